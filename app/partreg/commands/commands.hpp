@@ -1,0 +1,14 @@
+#pragma once
+/// \file
+/// Every subcommand of the `partreg` executable registers itself on the CLI11 app through one of these.
+/// A command parses its options, calls the libraries and reports; it holds no algorithm of its own.
+/// Failures are thrown (partreg::InputError -> exit 1, partreg::UsageError -> exit 2) and turned into
+/// one line on stderr by main.cpp.
+
+#include <CLI/CLI.hpp>
+
+namespace partreg::app {
+
+void add_cpd_command(CLI::App& app);
+
+}  // namespace partreg::app

@@ -1,0 +1,41 @@
+// partreg: the command-line entry point. Each subcommand lives in commands/; this file only turns
+// failures into one line on stderr and an exit code (0 success, 1 runtime failure, 2 usage error).
+#include <iostream>
+
+#include "partreg/commands/commands.hpp"
+#include "partreg/core/errors.hpp"
+
+namespace {
+
+int fail(const char* what, int code) {
+  std::cerr << "partreg: " << what << '\n';
+  return code;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  CLI::App app{"partreg: category-level, part-based, non-rigid 3D registration"};
+  app.set_version_flag("--version", std::string("partreg ") + PARTREG_VERSION);
+  app.require_subcommand(1);
+  partreg::app::add_cpd_command(app);
+
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::CallForHelp& e) {
+    return app.exit(e);
+  } catch (const CLI::CallForAllHelp& e) {
+    return app.exit(e);
+  } catch (const CLI::CallForVersion& e) {
+    return app.exit(e);
+  } catch (const CLI::ParseError& e) {
+    return fail(e.what(), 2);
+  } catch (const partreg::UsageError& e) {
+    return fail(e.what(), 2);
+  } catch (const partreg::InputError& e) {
+    return fail(e.what(), 1);
+  } catch (const std::exception& e) {
+    return fail(e.what(), 1);
+  }
+  return 0;
+}
