@@ -1,0 +1,51 @@
+#include "partreg/core/category_model.hpp"
+
+#include "partreg/core/errors.hpp"
+
+namespace partreg::core {
+
+const ShapeSpace& CategoryModel::space(const std::string& name) const {
+  std::string known;
+  for (const ShapeSpace& candidate : spaces) {
+    if (candidate.name == name) return candidate;
+    known += (known.empty() ? "" : ", ") + candidate.name;
+  }
+  throw UsageError("category '" + category + "' has no space '" + name + "' (it has: " + known + ")");
+}
+
+std::vector<int> CategoryModel::part_rows(int part_index) const {
+  std::vector<int> rows;
+  for (Eigen::Index i = 0; i < canonical_part.size(); ++i)
+    if (canonical_part[i] == part_index) rows.push_back(static_cast<int>(i));
+  return rows;
+}
+
+void CategoryModel::validate() const {
+  const Eigen::Index m = canonical.rows();
+  auto fail = [&](const std::string& what) { throw InputError("model '" + category + "': " + what); };
+  if (m == 0) fail("no canonical points");
+  if (!canonical.allFinite()) fail("canonical points are not finite");
+  if (canonical_part.size() != m) fail("part labels do not match the canonical points");
+  const int parts = static_cast<int>(part_names.size());
+  if (canonical_part.size() > 0 && (canonical_part.minCoeff() < 0 || canonical_part.maxCoeff() >= std::max(parts, 1)))
+    fail("a canonical point has a part index out of range");
+  if (canonical_mesh.faces.size() > 0 &&
+      (canonical_mesh.faces.minCoeff() < 0 || canonical_mesh.faces.maxCoeff() >= canonical_mesh.vertices.rows()))
+    fail("a mesh face refers to a vertex that does not exist");
+  if (mesh_vertex_part.size() != canonical_mesh.vertices.rows()) fail("mesh part labels do not match its vertices");
+  if (spaces.empty() || spaces.front().name != "holistic") fail("the first space must be the holistic one");
+  if (spaces.size() != static_cast<std::size_t>(parts) + 1) fail("there must be one space per part plus holistic");
+  for (const ShapeSpace& space : spaces) {
+    const Eigen::Index rows = space.canonical.rows();
+    const Eigen::Index q = space.basis.cols();
+    if (static_cast<Eigen::Index>(space.point_indices.size()) != rows) fail("space " + space.name + ": bad indices");
+    for (int index : space.point_indices)
+      if (index < 0 || index >= m) fail("space " + space.name + ": index out of range");
+    if (space.mean.size() != 3 * rows || space.basis.rows() != 3 * rows || space.kernel_mean.size() != 3 * rows ||
+        space.kernel_basis.rows() != 3 * rows || space.kernel_basis.cols() != q || space.variances.size() != q)
+      fail("space " + space.name + ": array sizes do not agree");
+    if (!(space.beta > 0.0)) fail("space " + space.name + ": beta must be positive");
+  }
+}
+
+}  // namespace partreg::core
