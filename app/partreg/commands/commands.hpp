@@ -9,6 +9,5 @@
 
 namespace partreg::app {
 
-void add_cpd_command(CLI::App& app);
 
 }  // namespace partreg::app
