@@ -1,0 +1,27 @@
+#pragma once
+/// \file
+/// Turning surfaces into point sets and point sets into smaller ones.
+
+#include <cstdint>
+#include <vector>
+
+#include "partreg/core/types.hpp"
+
+namespace partreg::core {
+
+/// `count` points uniformly distributed over the mesh's area (each triangle drawn with probability
+/// proportional to its area, then a uniform point inside it), with the triangle's normal. Deterministic
+/// for a seed. Works on open meshes with inner faces (ShapeNet): nothing assumes a closed surface.
+/// Throws InputError for a mesh without faces or area, and UsageError for count 0.
+Cloud sample_surface(const Mesh& mesh, std::size_t count, std::uint64_t seed);
+
+/// Farthest-point downsampling: `count` row indices, starting at row `first`, each next point the one
+/// farthest from those already chosen. Chosen over a voxel grid because it keeps thin parts (handles,
+/// spouts, triggers) covered whatever their size, and returns exactly `count` points. O(N count).
+/// Throws InputError when the set has fewer than `count` points.
+std::vector<int> farthest_point_indices(const Points& points, std::size_t count, int first = 0);
+
+/// The rows of `points` listed in `rows`, in that order.
+Points select_rows(const Points& points, const std::vector<int>& rows);
+
+}  // namespace partreg::core

@@ -1,0 +1,75 @@
+#pragma once
+/// \file
+/// Training a category (paper, section 3.1): choose a canonical instance, register it with non-rigid CPD to
+/// every other instance, propagate part labels through those registrations, and learn one holistic and one
+/// per-part shape space with PCA-EM. Inputs are plain point sets: reading dataset folders is partreg_io's job.
+
+#include <functional>
+#include <map>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "partreg/core/category_model.hpp"
+#include "partreg/core/cpd.hpp"
+
+namespace partreg::core {
+
+/// One aligned training instance, in the category's data frame.
+struct TrainingInstance {
+  std::string name;
+  Points points;          ///< a dense, roughly uniform sample of the surface (data units)
+  Eigen::VectorXi part;   ///< part index per point from the instance's own part files; empty if it has none
+  Mesh mesh;              ///< its surface (data units); may be empty for cloud data
+  Eigen::VectorXi mesh_vertex_part;  ///< part per mesh vertex (empty if the mesh or the parts are absent)
+};
+
+/// Training settings. Lengths are in normalised units: the canonical's bounding-box diagonal is 1.
+struct TrainingSettings {
+  int canonical_points = 1000;      ///< M, canonical points kept by farthest-point sampling (clamped to what exists)
+  int target_points = 1500;         ///< instance points each CPD registers onto (farthest-point sampled)
+  int latent_dimensions = 5;        ///< q per space (clamped to K - 1 for K training instances)
+  double beta = 0.3;                ///< CPD kernel width (normalised length); see docs/training.md for the choice
+  double lambda = 3.0;              ///< CPD smoothness weight (unitless)
+  double outlier_weight = 0.05;     ///< CPD w: clean sampled surfaces have few outliers
+  int max_iterations = 150;         ///< CPD iteration cap per registration
+  std::optional<std::string> canonical;  ///< instance name to use as canonical; automatic when absent
+  std::uint64_t seed = 1;           ///< PCA-EM seed
+};
+
+/// What training did, for logs and the closing report.
+struct TrainingReport {
+  struct Registration {
+    std::string instance;
+    std::string space;       ///< "holistic" or a part name
+    int iterations = 0;
+    double seconds = 0.0;
+    double mean_fit = 0.0;   ///< mean distance from the registered canonical to the instance (normalised)
+  };
+  std::vector<Registration> registrations;
+  /// Per instance with its own parts: share of its points whose propagated label equals its own, per part
+  /// name and "all".
+  std::map<std::string, std::map<std::string, double>> label_agreement;
+  std::string canonical_choice;  ///< how the canonical was chosen, with the figures behind the choice
+  double seconds = 0.0;
+};
+
+/// Called with one line of progress (for example after each CPD).
+using ProgressCallback = std::function<void(const std::string&)>;
+
+/// The instance every other one is closest to on average (symmetric Chamfer distance of FPS samples):
+/// a cheap stand-in for "reached with least deformation" (see docs/training.md). Returns its index.
+std::size_t choose_canonical(const std::vector<TrainingInstance>& instances, std::string* explanation = nullptr);
+
+/// Part labels for `points` taken from the nearest point of `labelled` (labels `labelled_part`).
+Eigen::VectorXi propagate_labels(const Points& labelled, const Eigen::VectorXi& labelled_part, const Points& points);
+
+/// Trains a category. `part_names` is empty for a category without parts. With parts, the canonical
+/// instance must carry its part labels; any other instance without its own labels gets them by
+/// propagation through the holistic registration. Throws InputError for fewer than two instances,
+/// mismatched part labels or non-finite data.
+CategoryModel train_category(const std::string& category, const std::vector<TrainingInstance>& instances,
+                             const std::vector<std::string>& part_names, const TrainingSettings& settings,
+                             TrainingReport* report = nullptr, const ProgressCallback& progress = {});
+
+}  // namespace partreg::core

@@ -1,0 +1,191 @@
+#include "cpd_expectation.hpp"
+
+#include <cmath>
+#include <mutex>
+
+#include "partreg/core/errors.hpp"
+#include "partreg/core/kdtree.hpp"
+#include "partreg/core/normalization.hpp"
+#include "partreg/core/parallel.hpp"
+
+namespace partreg::core::detail {
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+constexpr double kFloor = 1e-300;
+
+// Per-thread partial sums, merged under a lock once per thread.
+struct Partial {
+  Eigen::VectorXd P1;
+  Points PX;
+  double nll = 0.0;
+  explicit Partial(Eigen::Index m) : P1(Eigen::VectorXd::Zero(m)), PX(Points::Zero(m, 3)) {}
+};
+
+void merge(Expectation& total, const Partial& part, std::mutex& lock) {
+  std::lock_guard<std::mutex> guard(lock);
+  total.P1 += part.P1;
+  total.PX += part.PX;
+  total.negative_log_likelihood += part.nll;
+}
+
+// Dense E-step over blocks of target columns: one GEMM for the distances, vectorised exp.
+void dense_block(const Points& moved, const Points& target, Eigen::Index begin, Eigen::Index count, double sigma2,
+                 double c, Partial& partial, Expectation& out) {
+  const Points block = target.middleRows(begin, count);
+  Eigen::MatrixXd k = -2.0 * (moved * block.transpose());
+  k.colwise() += moved.rowwise().squaredNorm();
+  k.rowwise() += block.rowwise().squaredNorm().transpose();
+  k = (k.cwiseMax(0.0) * (-0.5 / sigma2)).array().exp();
+  // Floored: with w = 0 a target point far from every source point would otherwise divide by zero.
+  const Eigen::RowVectorXd denominator = (k.colwise().sum().array() + c).cwiseMax(kFloor);
+  k.array().rowwise() /= denominator.array();
+  partial.P1 += k.rowwise().sum();
+  partial.PX.noalias() += k * block;
+  out.Pt1.segment(begin, count) = k.colwise().sum().transpose();
+  partial.nll -= denominator.array().log().sum();
+}
+
+// Truncated E-step: only source points within the radius where the kernel exceeds `truncation`.
+void truncated_range(const KdTree& tree, const Points& target, Eigen::Index begin, Eigen::Index end, double sigma2,
+                     double c, double radius, Partial& partial, Expectation& out) {
+  std::vector<std::pair<int, double>> neighbours;
+  std::vector<double> kernel;
+  for (Eigen::Index n = begin; n < end; ++n) {
+    tree.radius(target.row(n).transpose(), radius, neighbours);
+    kernel.resize(neighbours.size());
+    double denominator = std::max(c, kFloor);
+    for (std::size_t j = 0; j < neighbours.size(); ++j) {
+      kernel[j] = std::exp(-0.5 * neighbours[j].second / sigma2);
+      denominator += kernel[j];
+    }
+    double mass = 0.0;
+    for (std::size_t j = 0; j < neighbours.size(); ++j) {
+      const double p = kernel[j] / denominator;
+      partial.P1[neighbours[j].first] += p;
+      partial.PX.row(neighbours[j].first) += p * target.row(n);
+      mass += p;
+    }
+    out.Pt1[n] = mass;
+    partial.nll -= std::log(denominator);
+  }
+}
+
+double truncation_radius(double sigma2, double truncation) {
+  return std::sqrt(2.0 * sigma2 * std::log(1.0 / truncation));
+}
+
+}  // namespace
+
+Expectation expectation(const Points& moved, const Points& target, double sigma2, double outlier_weight, int threads,
+                        double truncation) {
+  const Eigen::Index m = moved.rows(), n = target.rows();
+  Expectation out;
+  out.P1 = Eigen::VectorXd::Zero(m);
+  out.PX = Points::Zero(m, 3);
+  out.Pt1.resize(n);
+  // Uniform outlier term of the mixture, expressed in the kernel's scale (Myronenko & Song, Eq. 7).
+  const double c = std::pow(2.0 * kPi * sigma2, 1.5) * outlier_weight / (1.0 - outlier_weight) *
+                   static_cast<double>(m) / static_cast<double>(n);
+  std::mutex lock;
+  if (truncation > 0.0) {
+    const KdTree tree(moved);
+    const double radius = truncation_radius(sigma2, truncation);
+    parallel_for(n, [&](Eigen::Index begin, Eigen::Index end) {
+      Partial partial(m);
+      truncated_range(tree, target, begin, end, sigma2, c, radius, partial, out);
+      merge(out, partial, lock);
+    }, threads);
+  } else {
+    constexpr Eigen::Index kBlock = 128;
+    parallel_for(n, [&](Eigen::Index begin, Eigen::Index end) {
+      Partial partial(m);
+      for (Eigen::Index b = begin; b < end; b += kBlock)
+        dense_block(moved, target, b, std::min(kBlock, end - b), sigma2, c, partial, out);
+      merge(out, partial, lock);
+    }, threads, kBlock);
+  }
+  out.Np = out.P1.sum();
+  out.negative_log_likelihood += 1.5 * static_cast<double>(n) * std::log(sigma2);
+  return out;
+}
+
+double initial_sigma2(const Points& source, const Points& target) {
+  const double m = static_cast<double>(source.rows()), n = static_cast<double>(target.rows());
+  const Eigen::RowVector3d source_sum = source.colwise().sum(), target_sum = target.colwise().sum();
+  const double total = n * source.squaredNorm() + m * target.squaredNorm() - 2.0 * source_sum.dot(target_sum);
+  return total / (3.0 * m * n);
+}
+
+bool use_truncation(const Points& moved, double sigma2, double truncation) {
+  if (truncation <= 0.0) return false;
+  return truncation_radius(sigma2, truncation) < 0.2 * bounding_box_diagonal(moved);
+}
+
+void check_cpd_points(const Points& points, const char* name) {
+  if (points.rows() < 3)
+    throw InputError(std::string("CPD needs at least 3 ") + name + " points, got " + std::to_string(points.rows()));
+  if (!points.allFinite()) throw InputError(std::string("the ") + name + " points hold NaN or infinite values");
+}
+
+void check_cpd_common(double outlier_weight, double tolerance, int max_iterations) {
+  if (!(outlier_weight >= 0.0 && outlier_weight < 1.0))
+    throw UsageError("the CPD outlier weight w must be in [0, 1), got " + std::to_string(outlier_weight));
+  if (!(tolerance > 0.0)) throw UsageError("the CPD tolerance must be positive");
+  if (max_iterations < 1) throw UsageError("the CPD iteration cap must be at least 1");
+}
+
+}  // namespace partreg::core::detail
+
+#include <chrono>
+#include <cstdio>
+#include <cstdlib>
+
+namespace partreg::core::detail {
+
+EmOutcome run_em(const Points& target, Points& moved, const EmControl& control,
+                 const std::function<double(const Expectation&, double sigma2)>& m_step) {
+  EmOutcome outcome;
+  double sigma2 = initial_sigma2(moved, target);
+  if (!(sigma2 > 0.0)) {
+    outcome.stop_reason = CpdStopReason::degenerate;
+    return outcome;
+  }
+  double previous = std::numeric_limits<double>::infinity();
+  for (int iteration = 1; iteration <= control.max_iterations; ++iteration) {
+    const double truncation = use_truncation(moved, sigma2, control.truncation) ? control.truncation : 0.0;
+    const Expectation e = expectation(moved, target, sigma2, control.outlier_weight, control.threads, truncation);
+    outcome.iterations = iteration;
+    if (!(e.Np > 1e-12)) {  // every target point explained as an outlier: nothing left to fit
+      outcome.stop_reason = CpdStopReason::degenerate;
+      break;
+    }
+    sigma2 = m_step(e, sigma2);
+    // Relative to |L| + N: the log-likelihood can pass through zero, where a plain relative change explodes.
+    const double change = std::abs(e.negative_log_likelihood - previous) /
+                          (std::abs(e.negative_log_likelihood) + static_cast<double>(target.rows()));
+    previous = e.negative_log_likelihood;
+    if (!(sigma2 > 1e-12)) {  // an exact fit: the variance has nothing left to explain
+      sigma2 = 1e-12;
+      outcome.stop_reason = CpdStopReason::converged;
+      break;
+    }
+    if (change < control.tolerance) {
+      outcome.stop_reason = CpdStopReason::converged;
+      break;
+    }
+  }
+  outcome.sigma2 = sigma2;
+  return outcome;
+}
+
+std::int64_t now_nanoseconds() {
+  return std::chrono::duration_cast<std::chrono::nanoseconds>(std::chrono::steady_clock::now().time_since_epoch())
+      .count();
+}
+
+double seconds_since(std::int64_t start_nanoseconds) {
+  return static_cast<double>(now_nanoseconds() - start_nanoseconds) * 1e-9;
+}
+
+}  // namespace partreg::core::detail

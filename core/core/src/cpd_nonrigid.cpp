@@ -1,0 +1,132 @@
+// Non-rigid CPD (Myronenko & Song 2010, Fig. 4, and section 6 for the low-rank kernel).
+#include <Eigen/Dense>
+#include <cmath>
+
+#include "cpd_expectation.hpp"
+#include "partreg/core/cpd.hpp"
+#include "partreg/core/errors.hpp"
+#include "partreg/core/gaussian_kernel.hpp"
+#include "partreg/core/sampling.hpp"
+
+namespace partreg::core {
+namespace {
+
+// G ~ U U^T from a Nystrom approximation on farthest-point landmarks L (rows of the source):
+// U = G(Y, L) V_k Lambda_k^(-1/2) with the eigenpairs of G(L, L) above a relative threshold. Memory O(M k);
+// no M x M matrix is formed. The landmark weights W_L = V_k Lambda_k^(-1/2) Z turn a low-rank displacement
+// U Z back into an exact kernel field G(Y, L) W_L, so the result keeps the paper's form Y + G W.
+struct LowRankKernel {
+  std::vector<int> landmarks;    ///< rows of the source used as kernel centres
+  Eigen::MatrixXd factor;        ///< U (M x k)
+  Eigen::MatrixXd to_weights;    ///< V_k Lambda_k^(-1/2) (L x k): landmark weights of a unit column of Z
+};
+
+LowRankKernel low_rank_kernel(const Points& source, double beta, int kernel_rank) {
+  const auto landmarks_wanted = static_cast<Eigen::Index>(std::ceil(30.0 / (beta * beta)));
+  const auto count = std::min<Eigen::Index>(source.rows(), std::max<Eigen::Index>(200, landmarks_wanted));
+  LowRankKernel kernel;
+  kernel.landmarks = farthest_point_indices(source, static_cast<std::size_t>(count));
+  const Points landmarks = select_rows(source, kernel.landmarks);
+  const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eigen(gaussian_kernel(landmarks, landmarks, beta));
+  const Eigen::VectorXd values = eigen.eigenvalues().reverse();
+  Eigen::Index rank = 0;
+  while (rank < values.size() && values[rank] > 1e-7 * values[0]) ++rank;  // beyond this, round-off
+  if (kernel_rank > 0) rank = std::min<Eigen::Index>(rank, kernel_rank);
+  kernel.to_weights = eigen.eigenvectors().rowwise().reverse().leftCols(rank) *
+                      values.head(rank).cwiseSqrt().cwiseInverse().asDiagonal();
+  kernel.factor = apply_kernel(source, landmarks, kernel.to_weights, beta);
+  return kernel;
+}
+
+double variance(const detail::Expectation& e, const Points& target, const Points& moved) {
+  const double target_term = (target.array().square().colwise() * e.Pt1.array()).sum();
+  const double cross = (e.PX.array() * moved.array()).sum();
+  const double moved_term = (moved.array().square().colwise() * e.P1.array()).sum();
+  return std::abs(target_term - 2.0 * cross + moved_term) / (3.0 * e.Np);
+}
+
+void check_settings(const NonrigidCpdSettings& s) {
+  if (!(s.beta > 0.0)) throw UsageError("CPD beta must be positive, got " + std::to_string(s.beta));
+  if (!(s.lambda > 0.0)) throw UsageError("CPD lambda must be positive, got " + std::to_string(s.lambda));
+  if (s.kernel_rank < 0) throw UsageError("the kernel rank must be 0 (automatic) or positive");
+  detail::check_cpd_common(s.outlier_weight, s.tolerance, s.max_iterations);
+}
+
+bool use_fast_solver(const NonrigidCpdSettings& s, Eigen::Index source_points) {
+  if (s.solver == NonrigidCpdSettings::Solver::automatic) return source_points > 300;
+  return s.solver == NonrigidCpdSettings::Solver::fast;
+}
+
+}  // namespace
+
+Points NonrigidCpdResult::displacement_at(const Points& z) const {
+  const Points working = normalization.apply(z);
+  const Points working_source = normalization.apply(source);
+  return apply_kernel(working, working_source, weights, beta) * normalization.scale;
+}
+
+NonrigidCpdResult register_nonrigid(const Points& source_in, const Points& target_in,
+                                    const NonrigidCpdSettings& settings) {
+  const auto start = detail::now_nanoseconds();
+  check_settings(settings);
+  detail::check_cpd_points(source_in, "source");
+  detail::check_cpd_points(target_in, "target");
+  NonrigidCpdResult result;
+  result.normalization = settings.normalize ? Normalization::fit(target_in) : Normalization{};
+  const Points source = result.normalization.apply(source_in), target = result.normalization.apply(target_in);
+  const Eigen::Index m = source.rows();
+  const bool fast = use_fast_solver(settings, m);
+
+  Eigen::MatrixXd kernel;  // exact solver: G (M x M)
+  LowRankKernel low_rank;  // fast solver: G ~ U U^T
+  if (fast) low_rank = low_rank_kernel(source, settings.beta, settings.kernel_rank);
+  else kernel = gaussian_kernel(source, source, settings.beta);
+  Eigen::MatrixXd latent;  // fast solver: Z (k x 3), the displacement is U Z
+
+  Points weights = Points::Zero(m, 3);
+  Points moved = source;
+  detail::EmControl control;
+  control.outlier_weight = settings.outlier_weight;
+  control.tolerance = settings.tolerance;
+  control.max_iterations = settings.max_iterations;
+  control.threads = settings.threads;
+  control.truncation = fast ? settings.truncation : 0.0;
+  const auto outcome = detail::run_em(target, moved, control, [&](const detail::Expectation& e, double sigma2) {
+    const double regulariser = settings.lambda * sigma2;
+    const Points rhs = e.PX - e.P1.asDiagonal() * source;  // (G + lambda sigma2 d(P1)^-1) W = d(P1)^-1 PX - Y
+    if (fast) {
+      // With G = U U^T only Z = U^T W moves the points: (lambda sigma2 I + U^T d(P1) U) Z = U^T rhs
+      // (Woodbury, solved for Z). It stays well conditioned as sigma2 shrinks, unlike W itself.
+      const Eigen::MatrixXd& U = low_rank.factor;
+      Eigen::MatrixXd system = U.transpose() * e.P1.asDiagonal() * U;
+      system.diagonal().array() += regulariser;
+      latent = system.ldlt().solve(U.transpose() * rhs);
+      moved = source + U * latent;
+    } else {
+      Eigen::MatrixXd system = e.P1.asDiagonal() * kernel;
+      system.diagonal().array() += regulariser;
+      weights = system.partialPivLu().solve(rhs);
+      moved = source + kernel * weights;
+    }
+    return variance(e, target, moved);
+  });
+  // The fast solver's field is exactly G(Y, L) W_L: W is zero outside the landmark rows. The moved points
+  // are recomputed from W so that apply(source) reproduces them whatever solver found it.
+  if (fast && latent.size() > 0) {
+    const Eigen::MatrixXd landmark_weights = low_rank.to_weights * latent;
+    for (std::size_t l = 0; l < low_rank.landmarks.size(); ++l)
+      weights.row(low_rank.landmarks[l]) = landmark_weights.row(static_cast<Eigen::Index>(l));
+  }
+  result.weights = weights;
+  result.beta = settings.beta;
+  result.source = source_in;
+  result.moved = result.normalization.undo(source + apply_kernel(source, source, weights, settings.beta));
+  result.sigma2 = outcome.sigma2;
+  result.iterations = outcome.iterations;
+  result.stop_reason = outcome.stop_reason;
+  result.kernel_rank = fast ? static_cast<int>(low_rank.factor.cols()) : 0;
+  result.seconds = detail::seconds_since(start);
+  return result;
+}
+
+}  // namespace partreg::core

@@ -1,0 +1,129 @@
+// Rigid and affine CPD (Myronenko & Song 2010, Figs. 2 and 3): closed-form M-steps on the E-step's sums.
+#include <Eigen/SVD>
+
+#include "cpd_expectation.hpp"
+#include "partreg/core/cpd.hpp"
+#include "partreg/core/errors.hpp"
+
+namespace partreg::core {
+namespace {
+
+// Weighted centroids and the centred cross term A = X^T P^T Y - Np mu_x mu_y^T shared by both M-steps.
+struct Moments {
+  Eigen::Vector3d mu_target, mu_source;
+  Eigen::Matrix3d cross;         ///< sum_mn P_mn xhat_n yhat_m^T
+  double source_spread = 0.0;    ///< tr(Yhat^T d(P1) Yhat)
+  Eigen::Matrix3d source_outer;  ///< Yhat^T d(P1) Yhat
+  double target_spread = 0.0;    ///< tr(Xhat^T d(Pt1) Xhat)
+};
+
+Moments moments(const detail::Expectation& e, const Points& source, const Points& target) {
+  Moments m;
+  m.mu_target = (target.transpose() * e.Pt1) / e.Np;
+  m.mu_source = (source.transpose() * e.P1) / e.Np;
+  m.cross = e.PX.transpose() * source - e.Np * m.mu_target * m.mu_source.transpose();
+  const Points source_centred = source.rowwise() - m.mu_source.transpose();
+  const Points target_centred = target.rowwise() - m.mu_target.transpose();
+  m.source_outer = source_centred.transpose() * e.P1.asDiagonal() * source_centred;
+  m.source_spread = m.source_outer.trace();
+  m.target_spread = (target_centred.array().square().colwise() * e.Pt1.array()).sum();
+  return m;
+}
+
+detail::EmControl control_of(double w, double tolerance, int max_iterations, int threads) {
+  detail::EmControl control;
+  control.outlier_weight = w;
+  control.tolerance = tolerance;
+  control.max_iterations = max_iterations;
+  control.threads = threads;
+  control.truncation = 1e-8;  // rigid fits shrink sigma fast: truncation takes over the late iterations
+  return control;
+}
+
+// Frames of the working (normalised) space and the caller's space: x = k x' + c.
+Normalization working_frame(const Points& target, bool normalize) {
+  return normalize ? Normalization::fit(target) : Normalization{};
+}
+
+}  // namespace
+
+const char* to_string(CpdStopReason reason) {
+  switch (reason) {
+    case CpdStopReason::converged: return "converged";
+    case CpdStopReason::max_iterations: return "max_iterations";
+    case CpdStopReason::degenerate: return "degenerate";
+  }
+  return "unknown";
+}
+
+Eigen::Matrix4d RigidCpdResult::T_target_source() const {
+  Eigen::Matrix4d transform = Eigen::Matrix4d::Identity();
+  transform.topLeftCorner<3, 3>() = scale * rotation;
+  transform.topRightCorner<3, 1>() = translation;
+  return transform;
+}
+
+RigidCpdResult register_rigid(const Points& source_in, const Points& target_in, const RigidCpdSettings& settings) {
+  const auto start = detail::now_nanoseconds();
+  detail::check_cpd_points(source_in, "source");
+  detail::check_cpd_points(target_in, "target");
+  detail::check_cpd_common(settings.outlier_weight, settings.tolerance, settings.max_iterations);
+  const Normalization frame = working_frame(target_in, settings.normalize);
+  const Points source = frame.apply(source_in), target = frame.apply(target_in);
+
+  RigidCpdResult result;
+  Points moved = source;
+  const auto outcome = detail::run_em(
+      target, moved, control_of(settings.outlier_weight, settings.tolerance, settings.max_iterations, settings.threads),
+      [&](const detail::Expectation& e, double) {
+        const Moments m = moments(e, source, target);
+        const Eigen::JacobiSVD<Eigen::Matrix3d> svd(m.cross, Eigen::ComputeFullU | Eigen::ComputeFullV);
+        Eigen::Vector3d reflection_guard(1.0, 1.0, (svd.matrixU() * svd.matrixV().transpose()).determinant());
+        result.rotation = svd.matrixU() * reflection_guard.asDiagonal() * svd.matrixV().transpose();
+        const double trace = (m.cross.transpose() * result.rotation).trace();
+        result.scale = settings.estimate_scale ? trace / m.source_spread : 1.0;
+        result.translation = m.mu_target - result.scale * result.rotation * m.mu_source;
+        moved = ((result.scale * source * result.rotation.transpose()).rowwise() + result.translation.transpose());
+        const double explained = settings.estimate_scale ? result.scale * trace
+                                                         : 2.0 * trace - m.source_spread;
+        return std::abs(m.target_spread - explained) / (3.0 * e.Np);
+      });
+  // Back to the caller's frame: x = k x' + c with x' = s R y' + t' and y' = (y - c) / k.
+  result.translation = frame.scale * result.translation + frame.centre - result.scale * result.rotation * frame.centre;
+  result.moved = frame.undo(moved);
+  result.sigma2 = outcome.sigma2;
+  result.iterations = outcome.iterations;
+  result.stop_reason = outcome.stop_reason;
+  result.seconds = detail::seconds_since(start);
+  return result;
+}
+
+AffineCpdResult register_affine(const Points& source_in, const Points& target_in, const AffineCpdSettings& settings) {
+  const auto start = detail::now_nanoseconds();
+  detail::check_cpd_points(source_in, "source");
+  detail::check_cpd_points(target_in, "target");
+  detail::check_cpd_common(settings.outlier_weight, settings.tolerance, settings.max_iterations);
+  const Normalization frame = working_frame(target_in, settings.normalize);
+  const Points source = frame.apply(source_in), target = frame.apply(target_in);
+
+  AffineCpdResult result;
+  Points moved = source;
+  const auto outcome = detail::run_em(
+      target, moved, control_of(settings.outlier_weight, settings.tolerance, settings.max_iterations, settings.threads),
+      [&](const detail::Expectation& e, double) {
+        const Moments m = moments(e, source, target);
+        result.linear = m.cross * m.source_outer.inverse();
+        result.translation = m.mu_target - result.linear * m.mu_source;
+        moved = (source * result.linear.transpose()).rowwise() + result.translation.transpose();
+        return std::abs(m.target_spread - (m.cross * result.linear.transpose()).trace()) / (3.0 * e.Np);
+      });
+  result.translation = frame.scale * result.translation + frame.centre - result.linear * frame.centre;
+  result.moved = frame.undo(moved);
+  result.sigma2 = outcome.sigma2;
+  result.iterations = outcome.iterations;
+  result.stop_reason = outcome.stop_reason;
+  result.seconds = detail::seconds_since(start);
+  return result;
+}
+
+}  // namespace partreg::core

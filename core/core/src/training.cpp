@@ -1,0 +1,265 @@
+#include "partreg/core/training.hpp"
+
+#include <chrono>
+#include <sstream>
+
+#include "partreg/core/errors.hpp"
+#include "partreg/core/kdtree.hpp"
+#include "partreg/core/sampling.hpp"
+
+namespace partreg::core {
+namespace {
+
+double seconds_since(std::chrono::steady_clock::time_point start) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
+Points farthest_subset(const Points& points, int count) {
+  const auto wanted = static_cast<std::size_t>(std::min<Eigen::Index>(count, points.rows()));
+  return select_rows(points, farthest_point_indices(points, wanted));
+}
+
+double mean_nearest_distance(const Points& from, const Points& to) {
+  const KdTree tree(to);
+  std::vector<int> index;
+  Eigen::VectorXd squared;
+  tree.nearest_all(from, index, squared);
+  return squared.cwiseSqrt().mean();
+}
+
+void check_instances(const std::vector<TrainingInstance>& instances, const std::vector<std::string>& part_names) {
+  if (instances.size() < 2)
+    throw InputError("training needs at least two instances, got " + std::to_string(instances.size()));
+  for (const TrainingInstance& instance : instances) {
+    if (instance.points.rows() < 10)
+      throw InputError("instance '" + instance.name + "' has only " + std::to_string(instance.points.rows()) +
+                       " points");
+    if (!instance.points.allFinite()) throw InputError("instance '" + instance.name + "' has non-finite points");
+    if (instance.part.size() == 0) continue;
+    if (instance.part.size() != instance.points.rows())
+      throw InputError("instance '" + instance.name + "': part labels do not match its points");
+    if (instance.part.minCoeff() < 0 || instance.part.maxCoeff() >= static_cast<int>(part_names.size()))
+      throw InputError("instance '" + instance.name + "' has a part label outside the category's parts");
+  }
+}
+
+struct CpdRun {
+  Points weights;
+  Points moved;
+};
+
+CpdRun register_onto(const Points& canonical, const Points& target, const TrainingSettings& settings,
+                     const std::string& instance, const std::string& space, TrainingReport& report,
+                     const ProgressCallback& progress) {
+  NonrigidCpdSettings cpd;
+  cpd.beta = settings.beta;
+  cpd.lambda = settings.lambda;
+  cpd.outlier_weight = settings.outlier_weight;
+  cpd.max_iterations = settings.max_iterations;
+  cpd.normalize = false;  // the category is normalised once, so every W shares the same kernel G(C, C)
+  const NonrigidCpdResult result = register_nonrigid(canonical, target, cpd);
+  TrainingReport::Registration entry{instance, space, result.iterations, result.seconds,
+                                     mean_nearest_distance(result.moved, target)};
+  if (progress) {
+    std::ostringstream line;
+    line << "cpd " << space << " -> " << instance << ": " << result.iterations << " iterations, "
+         << result.seconds << " s, mean fit " << entry.mean_fit << " (normalised)";
+    progress(line.str());
+  }
+  report.registrations.push_back(entry);
+  return {result.weights, result.moved};
+}
+
+std::map<std::string, double> agreement(const Eigen::VectorXi& truth, const Eigen::VectorXi& propagated,
+                                        const std::vector<std::string>& part_names) {
+  std::map<std::string, double> result;
+  for (int part = -1; part < static_cast<int>(part_names.size()); ++part) {
+    int total = 0, same = 0;
+    for (Eigen::Index i = 0; i < truth.size(); ++i) {
+      if (part >= 0 && truth[i] != part) continue;
+      ++total;
+      same += truth[i] == propagated[i];
+    }
+    result[part < 0 ? "all" : part_names[part]] = total ? static_cast<double>(same) / total : 0.0;
+  }
+  return result;
+}
+
+}  // namespace
+
+std::size_t choose_canonical(const std::vector<TrainingInstance>& instances, std::string* explanation) {
+  std::vector<Points> samples;
+  for (const TrainingInstance& instance : instances) samples.push_back(farthest_subset(instance.points, 500));
+  const double diagonal = bounding_box_diagonal(instances.front().points);
+  std::size_t best = 0;
+  double best_cost = std::numeric_limits<double>::infinity();
+  for (std::size_t i = 0; i < samples.size(); ++i) {
+    double cost = 0.0;
+    for (std::size_t j = 0; j < samples.size(); ++j)
+      if (i != j) cost += mean_nearest_distance(samples[i], samples[j]) + mean_nearest_distance(samples[j], samples[i]);
+    cost /= 2.0 * static_cast<double>(samples.size() - 1) * diagonal;
+    if (cost < best_cost) best_cost = cost, best = i;
+  }
+  if (explanation) {
+    std::ostringstream text;
+    text << "medoid by symmetric Chamfer distance: '" << instances[best].name << "' is on average "
+         << best_cost << " of a diagonal from the others";
+    *explanation = text.str();
+  }
+  return best;
+}
+
+Eigen::VectorXi propagate_labels(const Points& labelled, const Eigen::VectorXi& labelled_part, const Points& points) {
+  const KdTree tree(labelled);
+  std::vector<int> index;
+  Eigen::VectorXd squared;
+  tree.nearest_all(points, index, squared);
+  Eigen::VectorXi part(points.rows());
+  for (Eigen::Index i = 0; i < points.rows(); ++i) part[i] = labelled_part[index[static_cast<std::size_t>(i)]];
+  return part;
+}
+
+namespace {
+
+// An instance as CPD sees it: a farthest-point sample in normalised units, with its part per point.
+struct Target {
+  Points points;
+  Eigen::VectorXi part;
+};
+
+Target make_target(const TrainingInstance& instance, const Normalization& normalization, int count) {
+  const Points normalised = normalization.apply(instance.points);
+  const auto wanted = static_cast<std::size_t>(std::min<Eigen::Index>(count, normalised.rows()));
+  const std::vector<int> rows = farthest_point_indices(normalised, wanted);
+  Target target{select_rows(normalised, rows), Eigen::VectorXi()};
+  if (instance.part.size() > 0) target.part = instance.part(rows);
+  return target;
+}
+
+std::size_t find_canonical(const std::vector<TrainingInstance>& instances, const TrainingSettings& settings,
+                           std::string& explanation) {
+  if (!settings.canonical) return choose_canonical(instances, &explanation);
+  std::string names;
+  for (std::size_t i = 0; i < instances.size(); ++i) {
+    if (instances[i].name == *settings.canonical) {
+      explanation = "given";
+      return i;
+    }
+    names += (names.empty() ? "" : ", ") + instances[i].name;
+  }
+  throw UsageError("no instance named '" + *settings.canonical + "' (instances: " + names + ")");
+}
+
+void set_canonical(CategoryModel& model, const TrainingInstance& canonical, const TrainingSettings& settings) {
+  model.normalization = Normalization::fit(canonical.points);
+  const Target sample = make_target(canonical, model.normalization, settings.canonical_points);
+  model.canonical = sample.points;
+  model.canonical_part = model.has_parts() ? sample.part : Eigen::VectorXi::Zero(sample.points.rows());
+  if (canonical.mesh.faces.rows() == 0) {
+    model.mesh_vertex_part.resize(0);
+    return;
+  }
+  model.canonical_mesh.vertices = model.normalization.apply(canonical.mesh.vertices);
+  model.canonical_mesh.faces = canonical.mesh.faces;
+  model.mesh_vertex_part = canonical.mesh_vertex_part.size() == canonical.mesh.vertices.rows()
+                               ? canonical.mesh_vertex_part
+                               : propagate_labels(model.canonical, model.canonical_part, model.canonical_mesh.vertices);
+}
+
+Points rows_of_part(const Target& target, int part) {
+  std::vector<int> rows;
+  for (Eigen::Index i = 0; i < target.part.size(); ++i)
+    if (target.part[i] == part) rows.push_back(static_cast<int>(i));
+  return select_rows(target.points, rows);
+}
+
+}  // namespace
+
+CategoryModel train_category(const std::string& category, const std::vector<TrainingInstance>& instances,
+                             const std::vector<std::string>& part_names, const TrainingSettings& settings,
+                             TrainingReport* report, const ProgressCallback& progress) {
+  const auto start = std::chrono::steady_clock::now();
+  check_instances(instances, part_names);
+  TrainingReport local_report;
+  TrainingReport& out = report ? *report : local_report;
+  const std::size_t canonical_index = find_canonical(instances, settings, out.canonical_choice);
+  const TrainingInstance& canonical = instances[canonical_index];
+  if (!part_names.empty() && canonical.part.size() == 0)
+    throw InputError("the canonical instance '" + canonical.name + "' has no part labels");
+
+  CategoryModel model;
+  model.category = category;
+  model.part_names = part_names;
+  set_canonical(model, canonical, settings);
+  const Eigen::Index m = model.canonical.rows();
+
+  // Holistic: the canonical onto every instance; the canonical itself counts with a zero field.
+  std::vector<Target> targets;
+  std::vector<Points> holistic_weights;
+  for (std::size_t i = 0; i < instances.size(); ++i) {
+    Target target = make_target(instances[i], model.normalization, settings.target_points);
+    if (i == canonical_index) {
+      holistic_weights.push_back(Points::Zero(m, 3));
+    } else {
+      const CpdRun run = register_onto(model.canonical, target.points, settings, instances[i].name, "holistic",
+                                       out, progress);
+      holistic_weights.push_back(run.weights);
+      if (model.has_parts()) {
+        const Eigen::VectorXi propagated = propagate_labels(run.moved, model.canonical_part, target.points);
+        if (target.part.size() > 0)
+          out.label_agreement[instances[i].name] = agreement(target.part, propagated, part_names);
+        else
+          target.part = propagated;
+      }
+    }
+    targets.push_back(std::move(target));
+  }
+  PcaEmSettings pca;
+  pca.dimensions = settings.latent_dimensions;
+  pca.seed = settings.seed;
+  std::vector<int> all_rows(static_cast<std::size_t>(m));
+  for (Eigen::Index i = 0; i < m; ++i) all_rows[static_cast<std::size_t>(i)] = static_cast<int>(i);
+  model.spaces.push_back(
+      learn_shape_space("holistic", all_rows, model.canonical, settings.beta, holistic_weights, pca));
+
+  // One space per part: the canonical part onto the same part of every instance.
+  for (int part = 0; part < static_cast<int>(part_names.size()); ++part) {
+    const std::vector<int> rows = model.part_rows(part);
+    const Points canonical_part = select_rows(model.canonical, rows);
+    if (canonical_part.rows() < 10)
+      throw InputError("part '" + part_names[part] + "' has only " + std::to_string(canonical_part.rows()) +
+                       " of the canonical's points; raise --points or check the labels");
+    std::vector<Points> part_weights;
+    for (std::size_t i = 0; i < instances.size(); ++i) {
+      if (i == canonical_index) {
+        part_weights.push_back(Points::Zero(canonical_part.rows(), 3));
+        continue;
+      }
+      const Points target = rows_of_part(targets[i], part);
+      if (target.rows() < 10)
+        throw InputError("instance '" + instances[i].name + "' has only " + std::to_string(target.rows()) +
+                         " points of part '" + part_names[part] + "'");
+      part_weights.push_back(
+          register_onto(canonical_part, target, settings, instances[i].name, part_names[part], out, progress)
+              .weights);
+    }
+    model.spaces.push_back(
+        learn_shape_space(part_names[part], rows, canonical_part, settings.beta, part_weights, pca));
+  }
+
+  TrainingRecord& record = model.training;
+  for (const TrainingInstance& instance : instances) record.instances.push_back(instance.name);
+  record.canonical = canonical.name;
+  record.canonical_choice = out.canonical_choice;
+  record.canonical_points = static_cast<int>(m);
+  record.beta = settings.beta;
+  record.lambda = settings.lambda;
+  record.outlier_weight = settings.outlier_weight;
+  record.latent_dimensions = settings.latent_dimensions;
+  record.seed = settings.seed;
+  model.validate();
+  out.seconds = seconds_since(start);
+  return model;
+}
+
+}  // namespace partreg::core

@@ -1,0 +1,145 @@
+#include "partreg/core/cpd.hpp"
+
+#include <gtest/gtest.h>
+
+#include "partreg/core/errors.hpp"
+#include "partreg/core/normalization.hpp"
+#include "support/test_shapes.hpp"
+
+namespace partreg::core {
+namespace {
+
+using testing::asymmetric_shape;
+using testing::mean_row_distance;
+using testing::rotation;
+using testing::rotation_error_deg;
+
+Points transformed(const Points& points, const Eigen::Matrix3d& linear, const Eigen::Vector3d& translation) {
+  return (points * linear.transpose()).rowwise() + translation.transpose();
+}
+
+// Gaussian noise of `sigma` on every point, then `outlier_ratio` * N uniform points in the bounding box.
+Points with_noise_and_outliers(const Points& points, double sigma, double outlier_ratio, std::uint64_t seed) {
+  std::mt19937_64 generator(seed);
+  std::normal_distribution<double> normal(0.0, sigma);
+  const auto outliers = static_cast<Eigen::Index>(outlier_ratio * static_cast<double>(points.rows()));
+  Points out(points.rows() + outliers, 3);
+  for (Eigen::Index i = 0; i < points.rows(); ++i)
+    for (int d = 0; d < 3; ++d) out(i, d) = points(i, d) + normal(generator);
+  const Eigen::RowVector3d lower = points.colwise().minCoeff(), upper = points.colwise().maxCoeff();
+  std::uniform_real_distribution<double> uniform(0.0, 1.0);
+  for (Eigen::Index i = points.rows(); i < out.rows(); ++i)
+    for (int d = 0; d < 3; ++d) out(i, d) = lower[d] + uniform(generator) * (upper[d] - lower[d]);
+  return out;
+}
+
+TEST(RigidCpd, RecoversA60DegreePoseUnderNoiseAndOutliers) {
+  const Points source = asymmetric_shape(800, 1);
+  const double diagonal = bounding_box_diagonal(source);
+  const Eigen::Matrix3d R = rotation(60.0 * M_PI / 180.0, {1.0, 2.0, 0.5});
+  const Eigen::Vector3d t(0.1, -0.05, 0.2);
+  const Points target = with_noise_and_outliers(transformed(source, R, t), 0.005 * diagonal, 0.2, 2);
+  RigidCpdSettings settings;
+  settings.outlier_weight = 0.2;
+  const RigidCpdResult result = register_rigid(source, target, settings);
+  EXPECT_LT(rotation_error_deg(result.rotation, R), 1.0);
+  EXPECT_LT((result.translation - t).norm(), 0.01 * diagonal);
+  EXPECT_NEAR(result.scale, 1.0, 1e-12);
+  // The unregistered source is 60 degrees and a translation off: the assertions above would catch it.
+  ASSERT_GT(rotation_error_deg(Eigen::Matrix3d::Identity(), R), 10.0);
+  EXPECT_LT(mean_row_distance(result.moved, transformed(source, R, t)), 0.01 * diagonal);
+}
+
+TEST(RigidCpd, EstimatesScale) {
+  const Points source = asymmetric_shape(500, 3);
+  const Eigen::Matrix3d R = rotation(0.4, {0.0, 0.0, 1.0});
+  const Points target = transformed(source, 1.7 * R, Eigen::Vector3d(1.0, 2.0, 3.0));
+  RigidCpdSettings settings;
+  settings.estimate_scale = true;
+  const RigidCpdResult result = register_rigid(source, target, settings);
+  EXPECT_NEAR(result.scale, 1.7, 0.01);
+  EXPECT_LT(rotation_error_deg(result.rotation, R), 0.5);
+  const Eigen::Matrix4d T = result.T_target_source();
+  const Eigen::Vector3d mapped = T.topLeftCorner<3, 3>() * source.row(7).transpose() + T.topRightCorner<3, 1>();
+  EXPECT_LT((mapped - target.row(7).transpose()).norm(), 0.01);
+}
+
+TEST(AffineCpd, RecoversAKnownAffineMap) {
+  const Points source = asymmetric_shape(600, 4);
+  Eigen::Matrix3d A;
+  A << 1.2, 0.1, 0.0, -0.05, 0.9, 0.1, 0.0, 0.2, 1.1;
+  const Eigen::Vector3d t(-0.3, 0.1, 0.05);
+  const AffineCpdResult result = register_affine(source, transformed(source, A, t), {});
+  EXPECT_LT((result.linear - A).cwiseAbs().maxCoeff(), 0.01);
+  EXPECT_LT((result.translation - t).norm(), 0.01);
+}
+
+// A smooth, clearly visible displacement: a bend and a bulge, about 10% of the diagonal.
+Points smoothly_displaced(const Points& source) {
+  Points target = source;
+  for (Eigen::Index i = 0; i < source.rows(); ++i) {
+    const double x = source(i, 0), y = source(i, 1);
+    target(i, 2) += 0.12 * x * x;
+    target(i, 1) += 0.08 * std::sin(2.0 * x);
+    target(i, 0) += 0.05 * y;
+  }
+  return target;
+}
+
+TEST(NonrigidCpd, ReachesASmoothlyDisplacedTarget) {
+  const Points source = asymmetric_shape(700, 5);
+  const Points target = smoothly_displaced(source);
+  const double diagonal = bounding_box_diagonal(target);
+  NonrigidCpdSettings settings;
+  settings.beta = 0.5;
+  settings.lambda = 3.0;
+  settings.outlier_weight = 0.0;
+  const NonrigidCpdResult result = register_nonrigid(source, target, settings);
+  EXPECT_LT(mean_row_distance(result.moved, target), 0.01 * diagonal);
+  ASSERT_GT(mean_row_distance(source, target), 0.03 * diagonal);  // the undeformed source would fail
+  EXPECT_GT(result.kernel_rank, 0);  // 700 points: the fast path ran
+}
+
+TEST(NonrigidCpd, FastPathAgreesWithExactPath) {
+  const Points source = asymmetric_shape(500, 6);
+  const Points target = smoothly_displaced(asymmetric_shape(450, 7));
+  NonrigidCpdSettings settings;
+  settings.beta = 0.3;
+  settings.lambda = 2.0;
+  settings.solver = NonrigidCpdSettings::Solver::exact;
+  const NonrigidCpdResult exact = register_nonrigid(source, target, settings);
+  settings.solver = NonrigidCpdSettings::Solver::fast;
+  const NonrigidCpdResult fast = register_nonrigid(source, target, settings);
+  const double diagonal = bounding_box_diagonal(target);
+  EXPECT_LT(mean_row_distance(exact.moved, fast.moved), 0.005 * diagonal);
+  ASSERT_GT(mean_row_distance(exact.moved, source), 0.02 * diagonal);  // they agree on a real motion
+}
+
+TEST(NonrigidCpd, TheFieldReproducesTheRegisteredPointsAndMovesOthers) {
+  const Points source = asymmetric_shape(400, 8);
+  const Points target = smoothly_displaced(source) * 3.0;  // data units differ from normalised ones
+  const NonrigidCpdResult result = register_nonrigid(source, target, {});
+  EXPECT_LT((result.apply(source) - result.moved).cwiseAbs().maxCoeff(), 1e-9);
+  // A point between source points moves like its neighbours.
+  const Points between = 0.5 * (source.topRows(1) + source.middleRows(1, 1));
+  const Points moved_between = result.apply(between);
+  const Points neighbours_mean = 0.5 * (result.moved.topRows(1) + result.moved.middleRows(1, 1));
+  EXPECT_LT((moved_between - neighbours_mean).norm(), 0.05 * bounding_box_diagonal(target));
+}
+
+TEST(Cpd, RefusesBadSettingsAndInputs) {
+  const Points source = asymmetric_shape(50, 9);
+  NonrigidCpdSettings negative_beta;
+  negative_beta.beta = -1.0;
+  EXPECT_THROW(register_nonrigid(source, source, negative_beta), UsageError);
+  NonrigidCpdSettings bad_w;
+  bad_w.outlier_weight = 1.0;
+  EXPECT_THROW(register_nonrigid(source, source, bad_w), UsageError);
+  EXPECT_THROW(register_rigid(Points(0, 3), source), InputError);
+  Points with_nan = source;
+  with_nan(3, 1) = std::nan("");
+  EXPECT_THROW(register_affine(source, with_nan), InputError);
+}
+
+}  // namespace
+}  // namespace partreg::core

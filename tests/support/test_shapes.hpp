@@ -1,0 +1,47 @@
+#pragma once
+/// \file
+/// Small synthetic point sets for core tests: asymmetric, so that a wrong pose cannot fit them.
+
+#include <Eigen/Geometry>
+#include <cmath>
+#include <random>
+
+#include "partreg/core/types.hpp"
+
+namespace partreg::testing {
+
+/// `count` points on an ellipsoid body (0.5 x 0.3 x 0.2) with a ring-shaped handle on its +x side:
+/// no symmetry maps it onto itself. About 1.2 units across.
+inline core::Points asymmetric_shape(int count, std::uint64_t seed) {
+  std::mt19937_64 generator(seed);
+  std::uniform_real_distribution<double> uniform(0.0, 1.0);
+  core::Points points(count, 3);
+  for (int i = 0; i < count; ++i) {
+    const double u = 2.0 * M_PI * uniform(generator), v = std::acos(2.0 * uniform(generator) - 1.0);
+    if (i % 4 != 3) {
+      points.row(i) << 0.5 * std::sin(v) * std::cos(u), 0.3 * std::sin(v) * std::sin(u), 0.2 * std::cos(v) + 0.05 * std::cos(3 * u);
+    } else {  // a handle: a quarter-thick ring in the x-z plane, offset to +x and tilted up
+      const double ring = 0.18 + 0.04 * std::cos(v * 2.0);
+      points.row(i) << 0.55 + ring * std::cos(u), 0.04 * std::sin(2.0 * v), 0.1 + ring * std::sin(u) * 0.7;
+    }
+  }
+  return points;
+}
+
+/// A proper rotation about `axis` (normalised here) by `angle_rad`.
+inline Eigen::Matrix3d rotation(double angle_rad, Eigen::Vector3d axis) {
+  return Eigen::AngleAxisd(angle_rad, axis.normalized()).toRotationMatrix();
+}
+
+/// Rotation angle between two rotations, degrees.
+inline double rotation_error_deg(const Eigen::Matrix3d& a, const Eigen::Matrix3d& b) {
+  const double cosine = std::clamp(((a.transpose() * b).trace() - 1.0) / 2.0, -1.0, 1.0);
+  return std::acos(cosine) * 180.0 / M_PI;
+}
+
+/// Mean Euclidean distance between corresponding rows.
+inline double mean_row_distance(const core::Points& a, const core::Points& b) {
+  return (a - b).rowwise().norm().mean();
+}
+
+}  // namespace partreg::testing
