@@ -18,6 +18,9 @@ int main(int argc, char** argv) {
   CLI::App app{"partreg: category-level, part-based, non-rigid 3D registration"};
   app.set_version_flag("--version", std::string("partreg ") + PARTREG_VERSION);
   app.require_subcommand(1);
+  partreg::app::add_cpd_command(app);
+  partreg::app::add_train_command(app);
+  partreg::app::add_info_command(app);
 
   try {
     app.parse(argc, argv);

@@ -1,0 +1,37 @@
+#include "partreg/commands/common.hpp"
+
+#include <fstream>
+#include <iostream>
+
+#include "partreg/core/errors.hpp"
+#include "partreg/io/atomic_file.hpp"
+#include "partreg/io/geometry_io.hpp"
+
+namespace partreg::app {
+
+core::Points read_points_logged(const std::string& path, std::size_t mesh_samples, std::uint64_t seed) {
+  std::size_t dropped = 0;
+  const bool is_mesh = io::is_mesh_file(path);
+  core::Cloud cloud = io::read_as_cloud(path, mesh_samples, seed, &dropped);
+  std::cerr << "read " << path << ": " << cloud.points.rows() << " points"
+            << (is_mesh ? " sampled from the mesh surface" : "");
+  if (dropped > 0) std::cerr << " (" << dropped << " NaN or infinite points dropped)";
+  std::cerr << '\n';
+  return std::move(cloud.points);
+}
+
+void write_json_or_stdout(const nlohmann::json& report, const std::string& path) {
+  if (path.empty()) return;
+  if (path == "-") {
+    std::cout << report.dump(2) << '\n';
+    return;
+  }
+  io::write_atomically(path, [&](const std::filesystem::path& temporary) {
+    std::ofstream out(temporary);
+    out << report.dump(2) << '\n';
+    if (!out) throw InputError("cannot write " + path);
+  });
+  std::cerr << "wrote " << path << '\n';
+}
+
+}  // namespace partreg::app

@@ -1,0 +1,81 @@
+// `partreg info MODEL`: what a category model holds.
+#include <iostream>
+#include <memory>
+
+#include "partreg/commands/commands.hpp"
+#include "partreg/commands/common.hpp"
+#include "partreg/io/model_file.hpp"
+
+namespace partreg::app {
+namespace {
+
+nlohmann::json describe(const core::CategoryModel& model) {
+  nlohmann::json spaces = nlohmann::json::array();
+  for (const core::ShapeSpace& space : model.spaces) {
+    const Eigen::VectorXd explained = space.explained_fraction();
+    spaces.push_back({{"name", space.name},
+                      {"points", space.point_count()},
+                      {"dimensions", space.dimensions()},
+                      {"beta", space.beta},
+                      {"variances", std::vector<double>(space.variances.data(), space.variances.data() + space.variances.size())},
+                      {"explained", std::vector<double>(explained.data(), explained.data() + explained.size())}});
+  }
+  const auto& record = model.training;
+  return {{"category", model.category},
+          {"parts", model.part_names},
+          {"canonical_points", model.canonical.rows()},
+          {"mesh_vertices", model.canonical_mesh.vertices.rows()},
+          {"mesh_faces", model.canonical_mesh.faces.rows()},
+          {"scale", model.normalization.scale},
+          {"centre", {model.normalization.centre.x(), model.normalization.centre.y(), model.normalization.centre.z()}},
+          {"spaces", spaces},
+          {"training",
+           {{"instances", record.instances},
+            {"canonical", record.canonical},
+            {"canonical_choice", record.canonical_choice},
+            {"beta", record.beta},
+            {"lambda", record.lambda},
+            {"outlier_weight", record.outlier_weight},
+            {"latent_dimensions", record.latent_dimensions}}}};
+}
+
+void print(const nlohmann::json& info) {
+  std::cout << "category " << info["category"].get<std::string>() << ": " << info["canonical_points"]
+            << " canonical points, mesh " << info["mesh_vertices"] << " vertices / " << info["mesh_faces"]
+            << " faces, diagonal " << info["scale"] << " (data units)\n";
+  std::cout << "parts: " << (info["parts"].empty() ? std::string("none") : info["parts"].dump()) << '\n';
+  for (const auto& space : info["spaces"]) {
+    std::cout << "space " << space["name"].get<std::string>() << ": " << space["points"] << " points, "
+              << space["dimensions"] << " dimensions, explained variance:";
+    double cumulative = 0.0;
+    for (const auto& fraction : space["explained"]) {
+      cumulative += fraction.get<double>();
+      std::cout << ' ' << std::round(fraction.get<double>() * 1000) / 10 << '%';
+    }
+    std::cout << " (total " << std::round(cumulative * 1000) / 10 << "%)\n";
+  }
+  const auto& training = info["training"];
+  std::cout << "trained on " << training["instances"].size() << " instances " << training["instances"].dump()
+            << ", canonical " << training["canonical"].get<std::string>() << " ("
+            << training["canonical_choice"].get<std::string>() << "), beta " << training["beta"] << ", lambda "
+            << training["lambda"] << '\n';
+}
+
+}  // namespace
+
+void add_info_command(CLI::App& app) {
+  auto model_path = std::make_shared<std::string>();
+  auto as_json = std::make_shared<bool>(false);
+  CLI::App* command = app.add_subcommand("info", "Describe a category model: parts, spaces, explained variance");
+  command->add_option("MODEL", *model_path, "model file")->required();
+  command->add_flag("--json", *as_json, "print JSON instead of text");
+  command->callback([model_path, as_json] {
+    const nlohmann::json info = describe(io::read_model(*model_path));
+    if (*as_json)
+      std::cout << info.dump(2) << '\n';
+    else
+      print(info);
+  });
+}
+
+}  // namespace partreg::app

@@ -1,0 +1,41 @@
+#pragma once
+/// \file
+/// Reading a category's training folder. Two layouts (instances are assumed pose-aligned in one frame):
+///  - one file per instance (any mesh or cloud format partreg reads): DATASET/<instance>.<ext>;
+///  - one subfolder per instance with one mesh per part, the file stem naming the part:
+///    DATASET/<instance>/<part>.<ext> (as ../shared/data/kettles). Parts then come with every instance.
+/// Folders named `ground_truth` and hidden entries are skipped (synthetic categories keep their
+/// correspondences there).
+
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "partreg/core/training.hpp"
+
+namespace partreg::io {
+
+/// How instances are turned into points.
+struct DatasetOptions {
+  int points_per_instance = 4000;  ///< surface samples per mesh instance (clouds are kept as they are)
+  std::uint64_t seed = 1;          ///< sampling seed (instance i uses seed + i)
+};
+
+/// A category read from disk.
+struct Dataset {
+  std::string name;                              ///< the folder's name
+  bool part_folders = false;                     ///< true for the one-subfolder-per-instance layout
+  std::vector<std::string> part_names;           ///< empty for a category without part files
+  std::vector<core::TrainingInstance> instances; ///< sorted by name
+};
+
+/// Reads a dataset folder. Throws InputError naming the folder or file for an empty folder, a single
+/// instance, unreadable files, or part folders whose part names differ between instances.
+Dataset read_dataset(const std::filesystem::path& folder, const DatasetOptions& options = {});
+
+/// Gives one instance parts from per-face labels of its mesh (a labels file made for it): the mesh is split
+/// by label and re-sampled like a part-folder instance. Throws InputError when the face count differs.
+void apply_face_labels(Dataset& dataset, const std::string& instance, const std::vector<std::string>& part_names,
+                       const Eigen::VectorXi& face_labels, const DatasetOptions& options = {});
+
+}  // namespace partreg::io

@@ -1,0 +1,185 @@
+#include "partreg/io/cloud_io.hpp"
+
+#include <algorithm>
+#include <set>
+#include <cstring>
+#include <fstream>
+#include <sstream>
+
+#include "partreg/core/errors.hpp"
+#include "partreg/io/atomic_file.hpp"
+#include "pcd_reader.hpp"
+#include "ply_format.hpp"
+
+namespace partreg::io {
+namespace {
+
+using detail::PlyHeader;
+
+// Reads one scalar of `type` in the file's encoding, as a double.
+double read_scalar(std::istream& in, const std::string& type, PlyHeader::Format format) {
+  if (format == PlyHeader::Format::ascii) {
+    double value = 0.0;
+    in >> value;
+    return value;
+  }
+  unsigned char bytes[8] = {};
+  const std::size_t size = detail::ply_type_size(type);
+  in.read(reinterpret_cast<char*>(bytes), static_cast<std::streamsize>(size));
+  if (format == PlyHeader::Format::binary_big_endian) std::reverse(bytes, bytes + size);  // files are LE or BE; we are LE
+  auto as = [&](auto value) {
+    std::memcpy(&value, bytes, sizeof value);
+    return static_cast<double>(value);
+  };
+  if (type == "char") return as(std::int8_t{});
+  if (type == "uchar") return as(std::uint8_t{});
+  if (type == "short") return as(std::int16_t{});
+  if (type == "ushort") return as(std::uint16_t{});
+  if (type == "int") return as(std::int32_t{});
+  if (type == "uint") return as(std::uint32_t{});
+  if (type == "float") return as(float{});
+  return as(double{});
+}
+
+bool is_integer_type(const std::string& type) { return type != "float" && type != "double"; }
+
+CloudFile read_ply_cloud(const std::filesystem::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  const std::string file = path.string();
+  const PlyHeader header = detail::read_ply_header(in, file);
+  if (header.elements.empty() || header.elements.front().name != "vertex")
+    throw InputError(file + ": the first PLY element must be 'vertex'");
+  const detail::PlyElement& vertex = header.elements.front();
+  const auto n = static_cast<Eigen::Index>(vertex.count);
+  std::map<std::string, Eigen::VectorXd> columns;
+  for (const auto& property : vertex.properties) {
+    if (property.is_list) throw InputError(file + ": list property '" + property.name + "' on vertices is not supported");
+    columns[property.name].resize(n);
+  }
+  for (const char* axis : {"x", "y", "z"})
+    if (!columns.count(axis)) throw InputError(file + ": PLY vertices have no '" + axis + "' property");
+  for (Eigen::Index i = 0; i < n; ++i)
+    for (const auto& property : vertex.properties) columns[property.name][i] = read_scalar(in, property.type, header.format);
+  if (!in) throw InputError(file + " is truncated: it ends before its " + std::to_string(n) + " vertices");
+
+  CloudFile result;
+  result.cloud.points.resize(n, 3);
+  result.cloud.points << columns["x"], columns["y"], columns["z"];
+  const bool has_normals = columns.count("nx") && columns.count("ny") && columns.count("nz");
+  if (has_normals) {
+    result.cloud.normals.resize(n, 3);
+    result.cloud.normals << columns["nx"], columns["ny"], columns["nz"];
+  }
+  for (const auto& property : vertex.properties) {
+    static const std::set<std::string> geometry = {"x", "y", "z", "nx", "ny", "nz"};
+    if (geometry.count(property.name) && (has_normals || property.name.size() == 1)) continue;
+    if (is_integer_type(property.type))
+      result.attributes.integers[property.name] = columns[property.name].cast<int>();
+    else
+      result.attributes.reals[property.name] = columns[property.name];
+  }
+  return result;
+}
+
+CloudFile read_xyz(const std::filesystem::path& path) {
+  std::ifstream in(path);
+  std::vector<double> values;
+  std::size_t columns = 0, line_number = 0;
+  std::string line;
+  while (std::getline(in, line)) {
+    ++line_number;
+    const auto comment = line.find('#');
+    if (comment != std::string::npos) line.erase(comment);
+    std::istringstream words(line);
+    std::vector<double> row;
+    for (std::string word; words >> word;) {
+      char* end = nullptr;
+      row.push_back(std::strtod(word.c_str(), &end));
+      if (*end != '\0') throw InputError(path.string() + ":" + std::to_string(line_number) + ": not a number: '" + word + "'");
+    }
+    if (row.empty()) continue;
+    if (columns == 0) columns = row.size();
+    if (row.size() != columns || (columns != 3 && columns != 6))
+      throw InputError(path.string() + ":" + std::to_string(line_number) + ": expected 3 or 6 numbers per line");
+    values.insert(values.end(), row.begin(), row.end());
+  }
+  CloudFile result;
+  const auto n = static_cast<Eigen::Index>(columns ? values.size() / columns : 0);
+  const Eigen::Map<const Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>> table(
+      values.data(), n, static_cast<Eigen::Index>(columns));
+  result.cloud.points = table.leftCols(std::min<Eigen::Index>(3, table.cols()));
+  if (columns == 6) result.cloud.normals = table.rightCols(3);
+  return result;
+}
+
+// Drops rows with a non-finite coordinate from the points and everything that runs parallel to them.
+void drop_non_finite(CloudFile& file, const std::string& name) {
+  const Eigen::Index n = file.cloud.points.rows();
+  if (n == 0) throw InputError(name + " holds no points");
+  std::vector<int> keep;
+  for (Eigen::Index i = 0; i < n; ++i)
+    if (file.cloud.points.row(i).allFinite()) keep.push_back(static_cast<int>(i));
+  if (keep.empty()) throw InputError("all " + std::to_string(n) + " points of " + name + " are NaN or infinite");
+  file.dropped_non_finite = static_cast<std::size_t>(n) - keep.size();
+  if (file.dropped_non_finite == 0) return;
+  file.cloud.points = file.cloud.points(keep, Eigen::all).eval();
+  if (file.cloud.normals.rows() == n) file.cloud.normals = file.cloud.normals(keep, Eigen::all).eval();
+  for (auto& [key, values] : file.attributes.integers) values = values(keep).eval();
+  for (auto& [key, values] : file.attributes.reals) values = values(keep).eval();
+}
+
+}  // namespace
+
+CloudFile read_cloud_file(const std::filesystem::path& path) {
+  const std::string name = path.string();
+  if (!std::filesystem::is_regular_file(path)) throw InputError("no such file: " + name);
+  if (std::filesystem::file_size(path) == 0) throw InputError(name + " is empty");
+  const std::string extension = lower_extension(path);
+  CloudFile file;
+  if (extension == ".pcd") file = detail::read_pcd(path);
+  else if (extension == ".ply") file = read_ply_cloud(path);
+  else if (extension == ".xyz" || extension == ".txt") file = read_xyz(path);
+  else throw InputError(name + ": unknown point cloud extension '" + extension + "' (expected .pcd, .ply, .xyz, .txt)");
+  drop_non_finite(file, name);
+  return file;
+}
+
+void write_cloud_ply(const std::filesystem::path& path, const core::Cloud& cloud, const PointAttributes& attributes,
+                     bool binary) {
+  const Eigen::Index n = cloud.points.rows();
+  const bool normals = cloud.normals.rows() == n && n > 0;
+  for (const auto& [name, values] : attributes.integers)
+    if (values.size() != n) throw UsageError("attribute '" + name + "' has " + std::to_string(values.size()) + " values for " + std::to_string(n) + " points");
+  for (const auto& [name, values] : attributes.reals)
+    if (values.size() != n) throw UsageError("attribute '" + name + "' has " + std::to_string(values.size()) + " values for " + std::to_string(n) + " points");
+  write_atomically(path, [&](const std::filesystem::path& temporary) {
+    std::ofstream out(temporary, std::ios::binary);
+    out << "ply\nformat " << (binary ? "binary_little_endian" : "ascii") << " 1.0\ncomment written by partreg\n"
+        << "element vertex " << n << "\nproperty float x\nproperty float y\nproperty float z\n";
+    if (normals) out << "property float nx\nproperty float ny\nproperty float nz\n";
+    for (const auto& entry : attributes.integers) out << "property int " << entry.first << '\n';
+    for (const auto& entry : attributes.reals) out << "property float " << entry.first << '\n';
+    out << "end_header\n";
+    out.precision(9);
+    auto put_float = [&](double value, bool last) {
+      const float f = static_cast<float>(value);
+      if (binary) out.write(reinterpret_cast<const char*>(&f), 4);
+      else out << f << (last ? '\n' : ' ');
+    };
+    auto put_int = [&](int value, bool last) {
+      if (binary) out.write(reinterpret_cast<const char*>(&value), 4);
+      else out << value << (last ? '\n' : ' ');
+    };
+    const std::size_t extra = attributes.integers.size() + attributes.reals.size();
+    for (Eigen::Index i = 0; i < n; ++i) {
+      for (int d = 0; d < 3; ++d) put_float(cloud.points(i, d), !normals && extra == 0 && d == 2);
+      if (normals) for (int d = 0; d < 3; ++d) put_float(cloud.normals(i, d), extra == 0 && d == 2);
+      std::size_t written = 0;
+      for (const auto& entry : attributes.integers) put_int(entry.second[i], ++written == extra);
+      for (const auto& entry : attributes.reals) put_float(entry.second[i], ++written == extra);
+    }
+    if (!out.flush()) throw InputError("cannot write " + path.string());
+  });
+}
+
+}  // namespace partreg::io

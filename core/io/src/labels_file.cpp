@@ -1,0 +1,94 @@
+#include "partreg/io/labels_file.hpp"
+
+#include <nlohmann/json.hpp>
+
+#include <fstream>
+#include <set>
+
+#include "partreg/core/errors.hpp"
+#include "partreg/io/atomic_file.hpp"
+
+namespace partreg::io {
+
+std::array<std::uint8_t, 3> part_color(int index) {
+  static const std::array<std::array<std::uint8_t, 3>, 8> okabe_ito = {{{0, 114, 178},
+                                                                        {230, 159, 0},
+                                                                        {0, 158, 115},
+                                                                        {204, 121, 167},
+                                                                        {86, 180, 233},
+                                                                        {213, 94, 0},
+                                                                        {240, 228, 66},
+                                                                        {0, 0, 0}}};
+  return okabe_ito[static_cast<std::size_t>(index) % okabe_ito.size()];
+}
+
+int PartLabels::part_index(const std::string& name) {
+  for (std::size_t i = 0; i < names.size(); ++i)
+    if (names[i] == name) return static_cast<int>(i);
+  names.push_back(name);
+  colors.push_back(part_color(static_cast<int>(names.size()) - 1));
+  return static_cast<int>(names.size()) - 1;
+}
+
+PartLabels read_labels_file(const std::filesystem::path& path) {
+  const std::string file = path.string();
+  std::ifstream in(path);
+  if (!in) throw InputError("cannot open labels file " + file);
+  const nlohmann::json json = nlohmann::json::parse(in, nullptr, /*allow_exceptions=*/false);
+  if (json.is_discarded() || !json.is_object()) throw InputError(file + " is not valid JSON");
+  if (json.value("format", "") != "partreg-labels") throw InputError(file + " is not a partreg labels file");
+  if (json.value("version", -1) != kLabelsFormatVersion)
+    throw InputError(file + " is labels format version " + std::to_string(json.value("version", -1)) +
+                     "; this partreg reads version " + std::to_string(kLabelsFormatVersion));
+  try {
+    PartLabels labels;
+    for (const auto& part : json.at("parts")) {
+      labels.names.push_back(part.at("name").get<std::string>());
+      labels.colors.push_back(part.at("color").get<std::array<std::uint8_t, 3>>());
+    }
+    if (std::set<std::string>(labels.names.begin(), labels.names.end()).size() != labels.names.size())
+      throw InputError(file + " names a part twice");
+    const std::string target = json.at("target").get<std::string>();
+    if (target != "faces" && target != "points") throw InputError(file + ": target must be 'faces' or 'points'");
+    labels.target = target == "faces" ? PartLabels::Target::faces : PartLabels::Target::points;
+    labels.source = json.value("source", "");
+    const auto values = json.at("labels").get<std::vector<int>>();
+    if (json.at("count").get<std::size_t>() != values.size())
+      throw InputError(file + " says it has " + json.at("count").dump() + " labels but holds " + std::to_string(values.size()));
+    labels.labels = Eigen::Map<const Eigen::VectorXi>(values.data(), static_cast<Eigen::Index>(values.size()));
+    for (int value : values)
+      if (value < -1 || value >= static_cast<int>(labels.names.size()))
+        throw InputError(file + " has a label " + std::to_string(value) + " outside its " +
+                         std::to_string(labels.names.size()) + " parts");
+    return labels;
+  } catch (const nlohmann::json::exception& e) {
+    throw InputError(file + " is a malformed labels file: " + e.what());
+  }
+}
+
+void write_labels_file(const std::filesystem::path& path, const PartLabels& labels) {
+  nlohmann::json parts = nlohmann::json::array();
+  for (std::size_t i = 0; i < labels.names.size(); ++i)
+    parts.push_back({{"name", labels.names[i]}, {"color", labels.colors[i]}});
+  const nlohmann::json json = {
+      {"format", "partreg-labels"},
+      {"version", kLabelsFormatVersion},
+      {"source", labels.source},
+      {"parts", parts},
+      {"target", labels.target == PartLabels::Target::faces ? "faces" : "points"},
+      {"count", labels.labels.size()},
+      {"labels", std::vector<int>(labels.labels.data(), labels.labels.data() + labels.labels.size())}};
+  write_atomically(path, [&](const std::filesystem::path& temporary) {
+    std::ofstream out(temporary);
+    out << json.dump() << '\n';
+    if (!out.flush()) throw InputError("cannot write " + path.string());
+  });
+}
+
+void check_labels_match(const PartLabels& labels, std::size_t count, const std::string& what) {
+  if (static_cast<std::size_t>(labels.labels.size()) != count)
+    throw InputError("the labels file has " + std::to_string(labels.labels.size()) + " labels but there are " +
+                     std::to_string(count) + " " + what);
+}
+
+}  // namespace partreg::io

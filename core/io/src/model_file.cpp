@@ -1,0 +1,255 @@
+#include "partreg/io/model_file.hpp"
+
+#include <nlohmann/json.hpp>
+
+#include <cstring>
+#include <fstream>
+#include <sstream>
+
+#include "partreg/core/errors.hpp"
+#include "partreg/io/atomic_file.hpp"
+
+namespace partreg::io {
+namespace {
+
+constexpr char kMagic[8] = {'P', 'R', 'T', 'R', 'E', 'G', 'M', '\n'};
+
+std::uint64_t fnv1a64(const char* data, std::size_t size) {
+  std::uint64_t hash = 1469598103934665603ULL;
+  for (std::size_t i = 0; i < size; ++i) {
+    hash ^= static_cast<unsigned char>(data[i]);
+    hash *= 1099511628211ULL;
+  }
+  return hash;
+}
+
+std::string hex(std::uint64_t value) {
+  std::ostringstream out;
+  out << std::hex << value;
+  return out.str();
+}
+
+// Collects arrays into one blob and describes them in the header's array table.
+class ArrayWriter {
+ public:
+  template <typename Matrix>
+  void add(const std::string& name, const Matrix& matrix) {
+    // Stored row-major whatever the in-memory layout, so readers need only the shape.
+    using Scalar = typename Matrix::Scalar;
+    Eigen::Matrix<Scalar, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor> rows = matrix;
+    const std::size_t bytes = static_cast<std::size_t>(rows.size()) * sizeof(Scalar);
+    const std::size_t offset = blob_.size();
+    blob_.resize(offset + ((bytes + 7) / 8) * 8, '\0');
+    if (bytes) std::memcpy(blob_.data() + offset, rows.data(), bytes);
+    table_.push_back({{"name", name},
+                      {"dtype", std::is_same_v<Scalar, double> ? "f64" : "i32"},
+                      {"shape", {rows.rows(), rows.cols()}},
+                      {"offset", offset},
+                      {"bytes", bytes},
+                      {"fnv1a64", hex(fnv1a64(blob_.data() + offset, bytes))}});
+  }
+  const std::string& blob() const { return blob_; }
+  const nlohmann::json& table() const { return table_; }
+
+ private:
+  std::string blob_;
+  nlohmann::json table_ = nlohmann::json::array();
+};
+
+nlohmann::json training_json(const core::TrainingRecord& record) {
+  return {{"instances", record.instances},       {"canonical", record.canonical},
+          {"canonical_choice", record.canonical_choice}, {"canonical_points", record.canonical_points},
+          {"beta", record.beta},                 {"lambda", record.lambda},
+          {"outlier_weight", record.outlier_weight}, {"latent_dimensions", record.latent_dimensions},
+          {"seed", record.seed}};
+}
+
+}  // namespace
+
+void write_model(const std::filesystem::path& path, const core::CategoryModel& model) {
+  model.validate();
+  ArrayWriter arrays;
+  arrays.add("canonical", model.canonical);
+  arrays.add("canonical_part", model.canonical_part);
+  arrays.add("mesh_vertices", model.canonical_mesh.vertices);
+  arrays.add("mesh_faces", model.canonical_mesh.faces);
+  arrays.add("mesh_vertex_part", model.mesh_vertex_part);
+  nlohmann::json spaces = nlohmann::json::array();
+  for (const core::ShapeSpace& space : model.spaces) {
+    const std::string prefix = "space." + space.name + ".";
+    arrays.add(prefix + "point_indices", Eigen::Map<const Eigen::VectorXi>(space.point_indices.data(),
+                                                                           space.point_indices.size()));
+    arrays.add(prefix + "mean", space.mean);
+    arrays.add(prefix + "basis", space.basis);
+    arrays.add(prefix + "variances", space.variances);
+    arrays.add(prefix + "kernel_mean", space.kernel_mean);
+    arrays.add(prefix + "kernel_basis", space.kernel_basis);
+    spaces.push_back({{"name", space.name}, {"beta", space.beta}, {"total_variance", space.total_variance}});
+  }
+  const nlohmann::json header = {
+      {"format", "partreg-model"},
+      {"format_version", kModelFormatVersion},
+      {"partreg_version", PARTREG_VERSION},
+      {"category", model.category},
+      {"normalization",
+       {{"centre", {model.normalization.centre.x(), model.normalization.centre.y(), model.normalization.centre.z()}},
+        {"scale", model.normalization.scale}}},
+      {"part_names", model.part_names},
+      {"training", training_json(model.training)},
+      {"spaces", spaces},
+      {"arrays", arrays.table()},
+      {"blob_bytes", arrays.blob().size()}};
+  const std::string text = header.dump();
+  write_atomically(path, [&](const std::filesystem::path& temporary) {
+    std::ofstream out(temporary, std::ios::binary);
+    const std::uint64_t length = text.size();
+    out.write(kMagic, sizeof kMagic);
+    out.write(reinterpret_cast<const char*>(&length), sizeof length);
+    out.write(text.data(), static_cast<std::streamsize>(text.size()));
+    out.write(arrays.blob().data(), static_cast<std::streamsize>(arrays.blob().size()));
+    if (!out.flush()) throw InputError("cannot write model file " + path.string());
+  });
+}
+
+namespace {
+
+// Reads arrays back from the blob, checking shape, type and checksum of each.
+class ArrayReader {
+ public:
+  ArrayReader(const nlohmann::json& table, std::string blob, std::string file)
+      : blob_(std::move(blob)), file_(std::move(file)) {
+    for (const auto& entry : table) entries_[entry.at("name").get<std::string>()] = entry;
+  }
+
+  template <typename Matrix>
+  Matrix get(const std::string& name) const {
+    using Scalar = typename Matrix::Scalar;
+    const auto found = entries_.find(name);
+    if (found == entries_.end()) fail("has no array '" + name + "'");
+    const nlohmann::json& entry = found->second;
+    const auto offset = entry.at("offset").get<std::size_t>();
+    const auto bytes = entry.at("bytes").get<std::size_t>();
+    const auto rows = entry.at("shape").at(0).get<Eigen::Index>();
+    const auto cols = entry.at("shape").at(1).get<Eigen::Index>();
+    const bool dtype_ok = entry.at("dtype") == (std::is_same_v<Scalar, double> ? "f64" : "i32");
+    if (!dtype_ok || rows < 0 || cols < 0 || bytes != static_cast<std::size_t>(rows * cols) * sizeof(Scalar))
+      fail("array '" + name + "' has an unexpected type or shape");
+    if (offset + bytes > blob_.size()) fail("is truncated (array '" + name + "' runs past the end of the file)");
+    if (hex(fnv1a64(blob_.data() + offset, bytes)) != entry.at("fnv1a64").get<std::string>())
+      fail("is corrupted (checksum of array '" + name + "' does not match)");
+    Eigen::Matrix<Scalar, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor> values(rows, cols);
+    if (bytes) std::memcpy(values.data(), blob_.data() + offset, bytes);
+    return Matrix(values);
+  }
+
+  [[noreturn]] void fail(const std::string& what) const { throw InputError("model file " + file_ + " " + what); }
+
+ private:
+  std::string blob_;
+  std::string file_;
+  std::map<std::string, nlohmann::json> entries_;
+};
+
+nlohmann::json read_header(std::ifstream& in, const std::string& file, std::uint64_t file_size) {
+  char magic[sizeof kMagic] = {};
+  std::uint64_t length = 0;
+  in.read(magic, sizeof magic);
+  if (!in || std::memcmp(magic, kMagic, sizeof kMagic) != 0)
+    throw InputError(file + " is not a partreg model file (no model header)");
+  in.read(reinterpret_cast<char*>(&length), sizeof length);
+  if (!in || length > file_size) throw InputError("model file " + file + " is truncated (in its header)");
+  std::string text(length, '\0');
+  in.read(text.data(), static_cast<std::streamsize>(length));
+  if (!in) throw InputError("model file " + file + " is truncated (in its header)");
+  nlohmann::json header = nlohmann::json::parse(text, nullptr, /*allow_exceptions=*/false);
+  if (header.is_discarded() || header.value("format", "") != "partreg-model")
+    throw InputError(file + " is not a partreg model file (unreadable header)");
+  const int version = header.value("format_version", -1);
+  if (version != kModelFormatVersion)
+    throw InputError("model file " + file + " has format version " + std::to_string(version) + " (written by partreg " +
+                     header.value("partreg_version", std::string("?")) + "); this partreg " + PARTREG_VERSION +
+                     " reads version " + std::to_string(kModelFormatVersion) + ": retrain the model");
+  return header;
+}
+
+core::TrainingRecord training_from_json(const nlohmann::json& json) {
+  core::TrainingRecord record;
+  record.instances = json.at("instances").get<std::vector<std::string>>();
+  record.canonical = json.at("canonical").get<std::string>();
+  record.canonical_choice = json.at("canonical_choice").get<std::string>();
+  record.canonical_points = json.at("canonical_points").get<int>();
+  record.beta = json.at("beta").get<double>();
+  record.lambda = json.at("lambda").get<double>();
+  record.outlier_weight = json.at("outlier_weight").get<double>();
+  record.latent_dimensions = json.at("latent_dimensions").get<int>();
+  record.seed = json.at("seed").get<std::uint64_t>();
+  return record;
+}
+
+core::CategoryModel model_from(const nlohmann::json& header, const ArrayReader& arrays) {
+  core::CategoryModel model;
+  model.category = header.at("category").get<std::string>();
+  const auto& centre = header.at("normalization").at("centre");
+  model.normalization.centre = {centre.at(0).get<double>(), centre.at(1).get<double>(), centre.at(2).get<double>()};
+  model.normalization.scale = header.at("normalization").at("scale").get<double>();
+  model.part_names = header.at("part_names").get<std::vector<std::string>>();
+  model.training = training_from_json(header.at("training"));
+  model.canonical = arrays.get<core::Points>("canonical");
+  model.canonical_part = arrays.get<Eigen::VectorXi>("canonical_part");
+  model.canonical_mesh.vertices = arrays.get<core::Points>("mesh_vertices");
+  model.canonical_mesh.faces = arrays.get<core::Faces>("mesh_faces");
+  model.mesh_vertex_part = arrays.get<Eigen::VectorXi>("mesh_vertex_part");
+  for (const auto& entry : header.at("spaces")) {
+    core::ShapeSpace space;
+    space.name = entry.at("name").get<std::string>();
+    space.beta = entry.at("beta").get<double>();
+    space.total_variance = entry.at("total_variance").get<double>();
+    const std::string prefix = "space." + space.name + ".";
+    const Eigen::VectorXi indices = arrays.get<Eigen::VectorXi>(prefix + "point_indices");
+    space.point_indices.assign(indices.data(), indices.data() + indices.size());
+    space.mean = arrays.get<Eigen::VectorXd>(prefix + "mean");
+    space.basis = arrays.get<Eigen::MatrixXd>(prefix + "basis");
+    space.variances = arrays.get<Eigen::VectorXd>(prefix + "variances");
+    space.kernel_mean = arrays.get<Eigen::VectorXd>(prefix + "kernel_mean");
+    space.kernel_basis = arrays.get<Eigen::MatrixXd>(prefix + "kernel_basis");
+    model.spaces.push_back(std::move(space));
+  }
+  for (core::ShapeSpace& space : model.spaces) {
+    for (int index : space.point_indices)
+      if (index < 0 || index >= model.canonical.rows()) arrays.fail("has a space index out of range");
+    space.canonical.resize(static_cast<Eigen::Index>(space.point_indices.size()), 3);
+    for (std::size_t i = 0; i < space.point_indices.size(); ++i)
+      space.canonical.row(static_cast<Eigen::Index>(i)) = model.canonical.row(space.point_indices[i]);
+  }
+  return model;
+}
+
+}  // namespace
+
+core::CategoryModel read_model(const std::filesystem::path& path) {
+  const std::string file = path.string();
+  std::error_code error;
+  const auto file_size = std::filesystem::file_size(path, error);
+  if (error) throw InputError("cannot read model file " + file + ": " + error.message());
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw InputError("cannot open model file " + file);
+  const nlohmann::json header = read_header(in, file, file_size);
+  const auto blob_bytes = header.value("blob_bytes", std::uint64_t{0});
+  const auto start = static_cast<std::uint64_t>(in.tellg());
+  if (start + blob_bytes != file_size)
+    throw InputError("model file " + file + " is " + (start + blob_bytes > file_size ? "truncated" : "damaged") +
+                     ": expected " + std::to_string(start + blob_bytes) + " bytes, found " +
+                     std::to_string(file_size));
+  std::string blob(blob_bytes, '\0');
+  in.read(blob.data(), static_cast<std::streamsize>(blob_bytes));
+  const ArrayReader arrays(header.at("arrays"), std::move(blob), file);
+  try {
+    core::CategoryModel model = model_from(header, arrays);
+    model.validate();
+    return model;
+  } catch (const nlohmann::json::exception& e) {
+    throw InputError("model file " + file + " has a malformed header: " + e.what());
+  }
+}
+
+}  // namespace partreg::io
