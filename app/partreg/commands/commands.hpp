@@ -12,5 +12,6 @@ namespace partreg::app {
 void add_cpd_command(CLI::App& app);
 void add_train_command(CLI::App& app);
 void add_info_command(CLI::App& app);
+void add_synth_command(CLI::App& app);
 
 }  // namespace partreg::app
