@@ -1,0 +1,150 @@
+#include <gtest/gtest.h>
+
+#include <fstream>
+
+#include "partreg/core/errors.hpp"
+#include "partreg/core/synthetic.hpp"
+#include "partreg/core/training.hpp"
+#include "partreg/io/dataset.hpp"
+#include "partreg/io/geometry_io.hpp"
+#include "partreg/io/mesh_io.hpp"
+#include "partreg/io/model_file.hpp"
+#include "support/temp_dir.hpp"
+
+namespace partreg::io {
+namespace {
+
+core::Mesh tetrahedron() {
+  core::Mesh mesh;
+  mesh.vertices.resize(4, 3);
+  mesh.vertices << 0, 0, 0, 1, 0, 0, 0, 1, 0, 0, 0, 1;
+  mesh.faces.resize(4, 3);
+  mesh.faces << 0, 2, 1, 0, 1, 3, 0, 3, 2, 1, 2, 3;
+  return mesh;
+}
+
+TEST(MeshIo, ObjAndPlyRoundTrip) {
+  testing::TempDir dir;
+  const core::Mesh mesh = tetrahedron();
+  const Eigen::VectorXi part = Eigen::Vector4i(0, 0, 1, 1);
+  for (const char* name : {"t.obj", "t.ply"}) {
+    write_mesh(dir / name, mesh, &part);
+    const core::Mesh read = read_mesh(dir / name);
+    EXPECT_EQ(read.faces.rows(), 4) << name;
+    EXPECT_EQ(read.vertices.rows(), 4) << name;
+    EXPECT_TRUE(is_mesh_file(dir / name));
+    EXPECT_EQ(read_as_cloud(dir / name, 50, 1).points.rows(), 50);
+  }
+  EXPECT_THROW(write_mesh(dir / "t.stl", mesh), UsageError);
+}
+
+TEST(MeshIo, ReadsStlAndOffThroughAssimp) {
+  testing::TempDir dir;
+  std::ofstream(dir / "t.off") << "OFF\n4 4 0\n0 0 0\n1 0 0\n0 1 0\n0 0 1\n3 0 2 1\n3 0 1 3\n3 0 3 2\n3 1 2 3\n";
+  std::ofstream(dir / "t.stl") << "solid t\nfacet normal 0 0 1\nouter loop\nvertex 0 0 0\nvertex 1 0 0\nvertex 0 1 0\n"
+                                  "endloop\nendfacet\nendsolid t\n";
+  EXPECT_EQ(read_mesh(dir / "t.off").faces.rows(), 4);
+  EXPECT_EQ(read_mesh(dir / "t.stl").faces.rows(), 1);
+}
+
+TEST(MeshIo, AMeshWithoutFacesIsRefused) {
+  testing::TempDir dir;
+  std::ofstream(dir / "points.obj") << "v 0 0 0\nv 1 0 0\nv 0 1 0\n";
+  EXPECT_THROW(read_mesh(dir / "points.obj"), InputError);
+  EXPECT_THROW(read_mesh(dir / "missing.obj"), InputError);
+}
+
+// A small model trained on a synthetic mug category, shared by the model-file tests.
+core::CategoryModel small_model() {
+  std::vector<core::TrainingInstance> instances;
+  for (const auto& synthetic : core::make_synthetic_category(core::SyntheticCategory::mug, 4, 3)) {
+    core::TrainingInstance instance;
+    instance.name = synthetic.name;
+    const auto samples = core::sample_correspondences(core::SyntheticCategory::mug, synthetic.shape_parameters, 600, 5);
+    instance.points = samples.points;
+    instance.part = samples.part;
+    instances.push_back(instance);
+  }
+  core::TrainingSettings settings;
+  settings.canonical_points = 200;
+  settings.target_points = 300;
+  return core::train_category("mugs", instances, {"body", "handle"}, settings);
+}
+
+TEST(ModelFile, SavesAndLoadsBitForBit) {
+  testing::TempDir dir;
+  const core::CategoryModel model = small_model();
+  write_model(dir / "m.prm", model);
+  const core::CategoryModel read = read_model(dir / "m.prm");
+  ASSERT_EQ(read.spaces.size(), model.spaces.size());
+  EXPECT_EQ(read.canonical, model.canonical);
+  EXPECT_EQ(read.canonical_part, model.canonical_part);
+  EXPECT_EQ(read.part_names, model.part_names);
+  for (std::size_t s = 0; s < model.spaces.size(); ++s) {
+    EXPECT_EQ(read.spaces[s].basis, model.spaces[s].basis);
+    EXPECT_EQ(read.spaces[s].kernel_basis, model.spaces[s].kernel_basis);
+    EXPECT_EQ(read.spaces[s].variances, model.spaces[s].variances);
+    EXPECT_EQ(read.spaces[s].canonical, model.spaces[s].canonical);
+  }
+  EXPECT_EQ(read.training.instances, model.training.instances);
+  // Writing what was read gives the same bytes.
+  write_model(dir / "again.prm", read);
+  std::ifstream a(dir / "m.prm", std::ios::binary), b(dir / "again.prm", std::ios::binary);
+  EXPECT_EQ(std::string(std::istreambuf_iterator<char>(a), {}), std::string(std::istreambuf_iterator<char>(b), {}));
+}
+
+std::string read_bytes(const std::filesystem::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  return {std::istreambuf_iterator<char>(in), {}};
+}
+
+void expect_refused(const std::filesystem::path& path, const std::string& words) {
+  try {
+    read_model(path);
+    ADD_FAILURE() << path << " was accepted";
+  } catch (const InputError& error) {
+    EXPECT_NE(std::string(error.what()).find(words), std::string::npos) << error.what();
+  }
+}
+
+TEST(ModelFile, RefusesOtherVersionsTruncationCorruptionAndOtherFiles) {
+  testing::TempDir dir;
+  write_model(dir / "m.prm", small_model());
+  const std::string bytes = read_bytes(dir / "m.prm");
+  std::ofstream(dir / "truncated.prm", std::ios::binary) << bytes.substr(0, bytes.size() - 100);
+  std::string corrupted = bytes;
+  corrupted[corrupted.size() - 50] ^= 0x5a;
+  std::ofstream(dir / "corrupted.prm", std::ios::binary) << corrupted;
+  std::string other_version = bytes;
+  const auto at = other_version.find("\"format_version\":1");
+  ASSERT_NE(at, std::string::npos);
+  other_version[at + 17] = '7';
+  std::ofstream(dir / "version.prm", std::ios::binary) << other_version;
+  std::ofstream(dir / "text.prm") << "hello\n";
+  expect_refused(dir / "truncated.prm", "truncated");
+  expect_refused(dir / "corrupted.prm", "corrupted");
+  expect_refused(dir / "version.prm", "format version 7");
+  expect_refused(dir / "text.prm", "not a partreg model");
+  expect_refused(dir / "missing.prm", "missing.prm");
+}
+
+TEST(Dataset, BadFoldersAreRefusedWithTheFolderNamed) {
+  testing::TempDir dir;
+  std::filesystem::create_directories(dir / "empty");
+  std::filesystem::create_directories(dir / "one/a");
+  write_mesh(dir / "one/a/body.obj", tetrahedron());
+  for (const char* instance : {"a", "b"}) std::filesystem::create_directories(dir / "mixed" / instance);
+  write_mesh(dir / "mixed/a/body.obj", tetrahedron());
+  write_mesh(dir / "mixed/b/lid.obj", tetrahedron());
+  EXPECT_THROW(read_dataset(dir / "empty"), InputError);
+  EXPECT_THROW(read_dataset(dir / "one"), InputError);
+  try {
+    read_dataset(dir / "mixed");
+    ADD_FAILURE() << "part folders with different parts were accepted";
+  } catch (const InputError& error) {
+    EXPECT_NE(std::string(error.what()).find("differ"), std::string::npos) << error.what();
+  }
+}
+
+}  // namespace
+}  // namespace partreg::io
