@@ -5,6 +5,7 @@
 
 #include <assimp/Importer.hpp>
 #include <fstream>
+#include <sstream>
 
 #include "partreg/core/errors.hpp"
 #include "partreg/io/atomic_file.hpp"
@@ -34,6 +35,22 @@ void collect(const aiScene& scene, const aiNode& node, const aiMatrix4x4& parent
   for (unsigned c = 0; c < node.mNumChildren; ++c) collect(scene, *node.mChildren[c], transform, vertices, faces);
 }
 
+// Some exported OBJ files (trimesh's, in ShapeNet-derived sets) carry a bare "vt" line that assimp rejects.
+// Such lines hold no geometry: drop them and let assimp parse the rest from memory.
+const aiScene* read_tolerant_obj(Assimp::Importer& importer, const std::filesystem::path& path, unsigned flags) {
+  std::ifstream in(path);
+  std::string text, line;
+  while (std::getline(in, line)) {
+    std::istringstream words(line);
+    std::string keyword, first;
+    words >> keyword >> first;
+    if ((keyword == "vt" || keyword == "vn") && first.empty()) continue;
+    text += line;
+    text += '\n';
+  }
+  return importer.ReadFileFromMemory(text.data(), text.size(), flags, "obj");
+}
+
 }  // namespace
 
 core::Mesh read_mesh(const std::filesystem::path& path) {
@@ -41,8 +58,10 @@ core::Mesh read_mesh(const std::filesystem::path& path) {
   if (!std::filesystem::is_regular_file(path)) throw InputError("no such file: " + name);
   if (std::filesystem::file_size(path) == 0) throw InputError(name + " is empty");
   Assimp::Importer importer;
-  const aiScene* scene = importer.ReadFile(
-      name, aiProcess_Triangulate | aiProcess_JoinIdenticalVertices | aiProcess_FindDegenerates | aiProcess_SortByPType);
+  const unsigned flags =
+      aiProcess_Triangulate | aiProcess_JoinIdenticalVertices | aiProcess_FindDegenerates | aiProcess_SortByPType;
+  const aiScene* scene = importer.ReadFile(name, flags);
+  if (!scene && lower_extension(path) == ".obj") scene = read_tolerant_obj(importer, path, flags);
   if (!scene || !scene->mRootNode) throw InputError("cannot read mesh " + name + ": " + importer.GetErrorString());
   std::vector<Eigen::Vector3d> vertices;
   std::vector<Eigen::Vector3i> faces;
