@@ -1,0 +1,110 @@
+// The real `partreg` executable: exit codes, messages and outputs as a user sees them.
+#include <gtest/gtest.h>
+
+#include <array>
+#include <cstdio>
+#include <fstream>
+
+#include "support/shared_data.hpp"
+#include "support/temp_dir.hpp"
+
+namespace partreg {
+namespace {
+
+struct Outcome {
+  int exit_code = -1;
+  std::string output;  ///< stdout and stderr together
+};
+
+Outcome run(const std::string& arguments) {
+  const std::string command = std::string(PARTREG_EXECUTABLE) + " " + arguments + " 2>&1";
+  Outcome result;
+  FILE* pipe = popen(command.c_str(), "r");
+  std::array<char, 4096> buffer{};
+  while (std::fgets(buffer.data(), buffer.size(), pipe)) result.output += buffer.data();
+  const int status = pclose(pipe);
+  result.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  return result;
+}
+
+class Cli : public ::testing::Test {
+ protected:
+  testing::TempDir dir;
+  std::string path(const std::string& name) const { return (dir / name).string(); }
+  void write(const std::string& name, const std::string& text) const { std::ofstream(dir / name) << text; }
+  std::string cube() const {
+    write("cube.obj",
+          "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nv 0 0 1\nv 1 0 1\nv 1 1 1\nv 0 1 1\n"
+          "f 1 3 2\nf 1 4 3\nf 5 6 7\nf 5 7 8\nf 1 2 6\nf 1 6 5\nf 2 3 7\nf 2 7 6\nf 3 4 8\nf 3 8 7\nf 4 1 5\nf 4 5 8\n");
+    return path("cube.obj");
+  }
+};
+
+TEST_F(Cli, CpdWritesTheMovedPointsAndAJsonReport) {
+  const std::string mesh = cube();
+  const Outcome result = run("cpd " + mesh + " " + mesh + " --mode rigid --points 300 --out " + path("out.ply") + " --json " + path("r.json"));
+  EXPECT_EQ(result.exit_code, 0) << result.output;
+  EXPECT_TRUE(std::filesystem::exists(dir / "out.ply"));
+  std::ifstream json(dir / "r.json");
+  const std::string text{std::istreambuf_iterator<char>(json), {}};
+  EXPECT_NE(text.find("T_target_source"), std::string::npos);
+  EXPECT_NE(text.find("sigma2"), std::string::npos);
+}
+
+TEST_F(Cli, BadInputGetsOneLineAndTheRightExitCodeAndNoOutput) {
+  const std::string mesh = cube();
+  write("empty.ply", "");
+  write("nan.xyz", "nan nan nan\nnan nan nan\nnan nan nan\n");
+  write("flat.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\n");
+  write("cloud.abc", "0 0 0\n");
+  const std::string out = " --out " + path("out.ply");
+  const std::vector<std::pair<std::string, int>> cases = {
+      {"cpd " + path("missing.ply") + " " + mesh + out, 2},  // CLI11 checks existence: a usage error
+      {"cpd " + path("cloud.abc") + " " + mesh + out, 1},
+      {"cpd " + path("empty.ply") + " " + mesh + out, 1},
+      {"cpd " + path("nan.xyz") + " " + mesh + out, 1},
+      {"cpd " + path("flat.obj") + " " + mesh + out, 1},
+      {"cpd " + mesh + " " + mesh + " --beta -1" + out, 2},
+      {"cpd " + mesh + " " + mesh + " --mode bent" + out, 2},
+      {"train " + path("nowhere") + " --out " + path("m.prm"), 1},
+      {"info " + path("empty.ply"), 1},
+      {"synth teapot --out " + path("synth"), 2},
+      {"frobnicate", 2},
+  };
+  for (const auto& [arguments, code] : cases) {
+    const Outcome result = run(arguments);
+    EXPECT_EQ(result.exit_code, code) << arguments << "\n" << result.output;
+    EXPECT_NE(result.output.find("partreg: "), std::string::npos) << arguments << "\n" << result.output;
+  }
+  for (const std::string& name : dir.entries())
+    EXPECT_TRUE(name == "cube.obj" || name == "empty.ply" || name == "nan.xyz" || name == "flat.obj" || name == "cloud.abc")
+        << "left behind: " << name;
+}
+
+TEST_F(Cli, SynthTrainInfoMakeAndDescribeAModel) {
+  const Outcome synth = run("synth mug --out " + path("mugs") + " --instances 4 --seed 2");
+  ASSERT_EQ(synth.exit_code, 0) << synth.output;
+  EXPECT_TRUE(std::filesystem::exists(dir / "mugs/mug_000/handle.obj"));
+  EXPECT_TRUE(std::filesystem::exists(dir / "mugs/ground_truth/mug_000.ply"));
+  const Outcome train = run("train " + path("mugs") + " --out " + path("mug.prm") + " --points 400");
+  ASSERT_EQ(train.exit_code, 0) << train.output;
+  EXPECT_NE(train.output.find("cpd holistic -> "), std::string::npos);  // one progress line per CPD
+  const Outcome info = run("info " + path("mug.prm") + " --json");
+  ASSERT_EQ(info.exit_code, 0) << info.output;
+  EXPECT_NE(info.output.find("\"handle\""), std::string::npos);
+  EXPECT_NE(info.output.find("\"explained\""), std::string::npos);
+  // The synth output folder is not overwritten.
+  EXPECT_EQ(run("synth mug --out " + path("mugs")).exit_code, 2);
+}
+
+TEST_F(Cli, TrainRefusesPartFoldersThatDisagreeAndWritesNoModel) {
+  ASSERT_EQ(run("synth mug --out " + path("mugs") + " --instances 3").exit_code, 0);
+  std::filesystem::rename(dir / "mugs/mug_001/handle.obj", dir / "mugs/mug_001/grip.obj");
+  const Outcome train = run("train " + path("mugs") + " --out " + path("mug.prm"));
+  EXPECT_EQ(train.exit_code, 1) << train.output;
+  EXPECT_NE(train.output.find("mug_001"), std::string::npos) << train.output;
+  EXPECT_FALSE(std::filesystem::exists(dir / "mug.prm"));
+}
+
+}  // namespace
+}  // namespace partreg
