@@ -13,5 +13,6 @@ void add_cpd_command(CLI::App& app);
 void add_train_command(CLI::App& app);
 void add_info_command(CLI::App& app);
 void add_synth_command(CLI::App& app);
+void add_register_command(CLI::App& app);
 
 }  // namespace partreg::app

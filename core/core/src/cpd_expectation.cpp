@@ -29,21 +29,36 @@ void merge(Expectation& total, const Partial& part, std::mutex& lock) {
   total.negative_log_likelihood += part.nll;
 }
 
-// Dense E-step over blocks of target columns: one GEMM for the distances, vectorised exp.
-void dense_block(const Points& moved, const Points& target, Eigen::Index begin, Eigen::Index count, double sigma2,
+// Dense E-step over a range of target points, one target point at a time against all source points held
+// as separate coordinate arrays, so that every step (distances, exp, accumulation) is a vectorised array
+// operation. Scalar is float for the fast path (twice the SIMD width; EM weights need no more precision)
+// and double for the exact path.
+template <typename Scalar>
+void dense_range(const Points& moved, const Points& target, Eigen::Index begin, Eigen::Index end, double sigma2,
                  double c, Partial& partial, Expectation& out) {
-  const Points block = target.middleRows(begin, count);
-  Eigen::MatrixXd k = -2.0 * (moved * block.transpose());
-  k.colwise() += moved.rowwise().squaredNorm();
-  k.rowwise() += block.rowwise().squaredNorm().transpose();
-  k = (k.cwiseMax(0.0) * (-0.5 / sigma2)).array().exp();
-  // Floored: with w = 0 a target point far from every source point would otherwise divide by zero.
-  const Eigen::RowVectorXd denominator = (k.colwise().sum().array() + c).cwiseMax(kFloor);
-  k.array().rowwise() /= denominator.array();
-  partial.P1 += k.rowwise().sum();
-  partial.PX.noalias() += k * block;
-  out.Pt1.segment(begin, count) = k.colwise().sum().transpose();
-  partial.nll -= denominator.array().log().sum();
+  using Array = Eigen::Array<Scalar, Eigen::Dynamic, 1>;
+  const Eigen::Index m = moved.rows();
+  const Array mx = moved.col(0).cast<Scalar>(), my = moved.col(1).cast<Scalar>(), mz = moved.col(2).cast<Scalar>();
+  Array p1 = Array::Zero(m), px = Array::Zero(m), py = Array::Zero(m), pz = Array::Zero(m), k(m);
+  const auto scale = static_cast<Scalar>(-0.5 / sigma2);
+  for (Eigen::Index n = begin; n < end; ++n) {
+    const auto x = static_cast<Scalar>(target(n, 0)), y = static_cast<Scalar>(target(n, 1)),
+               z = static_cast<Scalar>(target(n, 2));
+    k = (((mx - x).square() + (my - y).square() + (mz - z).square()) * scale).exp();
+    // Floored: with w = 0 a target point far from every source point would otherwise divide by zero.
+    const double denominator = std::max(static_cast<double>(k.sum()) + c, kFloor);
+    k *= static_cast<Scalar>(1.0 / denominator);
+    p1 += k;
+    px += k * x;
+    py += k * y;
+    pz += k * z;
+    out.Pt1[n] = static_cast<double>(k.sum());
+    partial.nll -= std::log(denominator);
+  }
+  partial.P1 += p1.template cast<double>().matrix();
+  partial.PX.col(0) += px.template cast<double>().matrix();
+  partial.PX.col(1) += py.template cast<double>().matrix();
+  partial.PX.col(2) += pz.template cast<double>().matrix();
 }
 
 // Truncated E-step: only source points within the radius where the kernel exceeds `truncation`.
@@ -78,7 +93,7 @@ double truncation_radius(double sigma2, double truncation) {
 }  // namespace
 
 Expectation expectation(const Points& moved, const Points& target, double sigma2, double outlier_weight, int threads,
-                        double truncation) {
+                        double truncation, bool precise) {
   const Eigen::Index m = moved.rows(), n = target.rows();
   Expectation out;
   out.P1 = Eigen::VectorXd::Zero(m);
@@ -97,13 +112,12 @@ Expectation expectation(const Points& moved, const Points& target, double sigma2
       merge(out, partial, lock);
     }, threads);
   } else {
-    constexpr Eigen::Index kBlock = 128;
     parallel_for(n, [&](Eigen::Index begin, Eigen::Index end) {
       Partial partial(m);
-      for (Eigen::Index b = begin; b < end; b += kBlock)
-        dense_block(moved, target, b, std::min(kBlock, end - b), sigma2, c, partial, out);
+      if (precise) dense_range<double>(moved, target, begin, end, sigma2, c, partial, out);
+      else dense_range<float>(moved, target, begin, end, sigma2, c, partial, out);
       merge(out, partial, lock);
-    }, threads, kBlock);
+    }, threads, 128);
   }
   out.Np = out.P1.sum();
   out.negative_log_likelihood += 1.5 * static_cast<double>(n) * std::log(sigma2);
@@ -154,7 +168,8 @@ EmOutcome run_em(const Points& target, Points& moved, const EmControl& control,
   double previous = std::numeric_limits<double>::infinity();
   for (int iteration = 1; iteration <= control.max_iterations; ++iteration) {
     const double truncation = use_truncation(moved, sigma2, control.truncation) ? control.truncation : 0.0;
-    const Expectation e = expectation(moved, target, sigma2, control.outlier_weight, control.threads, truncation);
+    const Expectation e =
+        expectation(moved, target, sigma2, control.outlier_weight, control.threads, truncation, control.precise);
     outcome.iterations = iteration;
     if (!(e.Np > 1e-12)) {  // every target point explained as an outlier: nothing left to fit
       outcome.stop_reason = CpdStopReason::degenerate;

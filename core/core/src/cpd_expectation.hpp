@@ -17,9 +17,10 @@ struct Expectation {
 
 /// One E-step for the current source positions `moved` against `target` with variance sigma2 and outlier
 /// weight w. With `truncation` > 0, kernel values below it are skipped by a KD-tree radius search (only
-/// worth it once sigma is small against the set; `use_truncation` decides that).
+/// worth it once sigma is small against the set; `use_truncation` decides that). The dense path computes
+/// kernel values in float unless `precise`.
 Expectation expectation(const Points& moved, const Points& target, double sigma2, double outlier_weight,
-                        int threads, double truncation = 0.0);
+                        int threads, double truncation = 0.0, bool precise = false);
 
 /// The classic initial variance: mean squared distance over all source-target pairs, divided by 3.
 double initial_sigma2(const Points& source, const Points& target);
@@ -48,6 +49,7 @@ struct EmControl {
   int max_iterations = 150;
   int threads = 0;
   double truncation = 0.0;  ///< 0 = always dense
+  bool precise = false;     ///< double-precision dense E-step (the exact non-rigid path)
 };
 
 struct EmOutcome {

@@ -91,6 +91,7 @@ NonrigidCpdResult register_nonrigid(const Points& source_in, const Points& targe
   control.max_iterations = settings.max_iterations;
   control.threads = settings.threads;
   control.truncation = fast ? settings.truncation : 0.0;
+  control.precise = !fast;
   const auto outcome = detail::run_em(target, moved, control, [&](const detail::Expectation& e, double sigma2) {
     const double regulariser = settings.lambda * sigma2;
     const Points rhs = e.PX - e.P1.asDiagonal() * source;  // (G + lambda sigma2 d(P1)^-1) W = d(P1)^-1 PX - Y

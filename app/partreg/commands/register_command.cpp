@@ -1,0 +1,131 @@
+// `partreg register MODEL OBSERVED`: deform a category model onto an observed cloud or mesh.
+#include <iostream>
+#include <memory>
+#include <sstream>
+
+#include "partreg/commands/commands.hpp"
+#include "partreg/commands/common.hpp"
+#include "partreg/core/deformation.hpp"
+#include "partreg/core/errors.hpp"
+#include "partreg/core/registration.hpp"
+#include "partreg/io/cloud_io.hpp"
+#include "partreg/io/frames_file.hpp"
+#include "partreg/io/mesh_io.hpp"
+#include "partreg/io/model_file.hpp"
+
+namespace partreg::app {
+namespace {
+
+struct RegisterOptions {
+  std::string model_path, observed_path, variant = "holistic", json_path, points_out, mesh_out;
+  std::string frames_path, frames_out, viewpoint, direction = "symmetric", loss = "huber";
+  std::size_t mesh_samples = 3000;
+  core::RegistrationSettings settings;
+};
+
+Eigen::Vector3d parse_vector(const std::string& text, const std::string& option) {
+  std::stringstream in(text);
+  Eigen::Vector3d value;
+  char comma = 0;
+  if (!(in >> value.x() >> comma >> value.y() >> comma >> value.z()) || !in.eof())
+    throw UsageError(option + " takes three numbers separated by commas, not '" + text + "'");
+  return value;
+}
+
+nlohmann::json matrix_json(const Eigen::Matrix4d& matrix) {
+  nlohmann::json rows = nlohmann::json::array();
+  for (int r = 0; r < 4; ++r) rows.push_back({matrix(r, 0), matrix(r, 1), matrix(r, 2), matrix(r, 3)});
+  return rows;
+}
+
+nlohmann::json result_json(const core::RegistrationResult& result, const RegisterOptions& options) {
+  nlohmann::json spaces = nlohmann::json::array();
+  for (const core::SpaceFit& fit : result.fits)
+    spaces.push_back({{"space", fit.space},
+                      {"latent", std::vector<double>(fit.latent.data(), fit.latent.data() + fit.latent.size())},
+                      {"T_observed_canonical", matrix_json(fit.T_observed_canonical)},
+                      {"scale", fit.scale},
+                      {"cost", fit.cost},
+                      {"iterations", fit.iterations},
+                      {"seconds", fit.seconds}});
+  return {{"model", options.model_path},
+          {"observed", options.observed_path},
+          {"variant", core::to_string(result.variant)},
+          {"direction", options.direction},
+          {"loss", options.loss},
+          {"spaces", spaces},
+          {"fit",
+           {{"mean", result.fit.mean},
+            {"p90", result.fit.p90},
+            {"mean_normalised", result.fit.mean_normalised},
+            {"p90_normalised", result.fit.p90_normalised}}},
+          {"seconds", result.seconds}};
+}
+
+void write_outputs(const core::CategoryModel& model, const core::RegistrationResult& result,
+                   const RegisterOptions& options) {
+  if (!options.points_out.empty()) {
+    io::PointAttributes attributes;
+    attributes.integers["part"] = result.part;
+    io::write_cloud_ply(options.points_out, core::Cloud{result.deformed, {}}, attributes);
+    std::cerr << "wrote " << options.points_out << '\n';
+  }
+  if (!options.mesh_out.empty()) {
+    if (model.canonical_mesh.faces.rows() == 0)
+      throw InputError("model '" + model.category + "' has no canonical mesh (it was trained on clouds)");
+    const core::Mesh mesh = core::deform_mesh(model, result);
+    io::write_mesh(options.mesh_out, mesh, &model.mesh_vertex_part);
+    std::cerr << "wrote " << options.mesh_out << '\n';
+  }
+  if (!options.frames_out.empty()) {
+    const auto frames = io::read_frames_file(options.frames_path);
+    io::write_frames_file(options.frames_out, core::transfer_frames(model, result, frames));
+    std::cerr << "wrote " << options.frames_out << '\n';
+  }
+}
+
+void run_register(RegisterOptions& options) {
+  options.settings.variant = core::parse_variant(options.variant);
+  options.settings.direction = core::parse_direction(options.direction);
+  options.settings.loss = core::parse_loss(options.loss);
+  if (!options.viewpoint.empty()) options.settings.viewpoint = parse_vector(options.viewpoint, "--viewpoint");
+  if (options.settings.restarts < 1) throw UsageError("--restarts must be at least 1");
+  if (options.frames_out.empty() != options.frames_path.empty())
+    throw UsageError("--frames and --frames-out go together");
+  if (!options.frames_path.empty()) io::read_frames_file(options.frames_path);  // refuse bad frames before working
+  const core::CategoryModel model = io::read_model(options.model_path);
+  const core::Points observed = read_points_logged(options.observed_path, options.mesh_samples, 1);
+  const core::RegistrationResult result = core::register_observation(model, observed, options.settings);
+  for (const core::SpaceFit& fit : result.fits)
+    std::cerr << "space " << fit.space << ": " << fit.iterations << " steps, cost " << fit.cost << ", " << fit.seconds
+              << " s\n";
+  std::cerr << core::to_string(result.variant) << ": mean closest-point distance " << result.fit.mean << " (data units), "
+            << result.fit.mean_normalised << " of the diagonal; 90th percentile " << result.fit.p90 << "; "
+            << result.seconds << " s\n";
+  write_outputs(model, result, options);
+  write_json_or_stdout(result_json(result, options), options.json_path);
+}
+
+}  // namespace
+
+void add_register_command(CLI::App& app) {
+  auto o = std::make_shared<RegisterOptions>();
+  CLI::App* command = app.add_subcommand("register", "Deform a category model onto an observed cloud or mesh");
+  command->add_option("MODEL", o->model_path, "model file from partreg train")->required();
+  command->add_option("OBSERVED", o->observed_path, "observed cloud or mesh (data units and frame)")->required();
+  command->add_option("--variant", o->variant, "holistic | partwise | hol+part")->capture_default_str();
+  command->add_option("--json", o->json_path, "result JSON ('-' for stdout)");
+  command->add_option("--points-out", o->points_out, "PLY of the deformed canonical points with their part");
+  command->add_option("--mesh-out", o->mesh_out, "the deformed canonical mesh (.obj or .ply)");
+  command->add_option("--frames", o->frames_path, "frames attached to the canonical (JSON)");
+  command->add_option("--frames-out", o->frames_out, "where the transferred frames go");
+  command->add_option("--viewpoint", o->viewpoint, "X,Y,Z camera position: only canonical points facing it count");
+  command->add_option("--restarts", o->settings.restarts, "initial rotations about the up axis")->capture_default_str();
+  command->add_option("--direction", o->direction, "canonical | observed | symmetric")->capture_default_str();
+  command->add_option("--loss", o->loss, "squared | huber | cauchy | trimmed")->capture_default_str();
+  command->add_flag("--scale", o->settings.estimate_scale, "also fit a uniform scale");
+  command->add_option("--samples", o->mesh_samples, "points sampled from an observed mesh")->capture_default_str();
+  command->callback([o] { run_register(*o); });
+}
+
+}  // namespace partreg::app

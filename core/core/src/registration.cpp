@@ -1,0 +1,208 @@
+#include "partreg/core/registration.hpp"
+
+#include <Eigen/Eigenvalues>
+#include <chrono>
+#include <future>
+#include <numeric>
+
+#include "partreg/core/errors.hpp"
+#include "partreg/core/kdtree.hpp"
+#include "partreg/core/normalization.hpp"
+#include "partreg/core/sampling.hpp"
+#include "space_solver.hpp"
+
+namespace partreg::core {
+namespace {
+
+using detail::Observation;
+using detail::Pose;
+using detail::SpaceSolution;
+
+detail::Observation prepare_observation(const CategoryModel& model, const Points& observed,
+                                        const RegistrationSettings& settings, Eigen::Vector3d& centroid) {
+  if (observed.rows() < 10)
+    throw InputError("the observed cloud has " + std::to_string(observed.rows()) + " points; at least 10 are needed");
+  if (!observed.allFinite()) throw InputError("the observed cloud holds NaN or infinite points");
+  const double ratio = bounding_box_diagonal(observed) / model.normalization.scale;
+  if (!(ratio > 0.02 && ratio < 50.0))
+    throw InputError("the observed cloud is " + std::to_string(ratio) + " times the size of the '" + model.category +
+                     "' model: check its units");
+  centroid = observed.colwise().mean().transpose();
+  Observation observation;
+  const Points normalised = (observed.rowwise() - centroid.transpose()) / model.normalization.scale;
+  const auto count = std::min<Eigen::Index>(settings.observed_points, normalised.rows());
+  observation.points = select_rows(normalised, farthest_point_indices(normalised, static_cast<std::size_t>(count)));
+  observation.tree = std::make_unique<KdTree>(observation.points);
+  if (settings.viewpoint) observation.viewpoint = (*settings.viewpoint - centroid) / model.normalization.scale;
+  return observation;
+}
+
+// Outward normals of the canonical points: PCA of each point's neighbourhood, turned away from the centroid.
+Points canonical_normals(const Points& points) {
+  const KdTree tree(points);
+  const Eigen::RowVector3d centre = points.colwise().mean();
+  const double radius = 0.05;  // normalised: a few canonical spacings
+  Points normals(points.rows(), 3);
+  std::vector<std::pair<int, double>> near;
+  for (Eigen::Index m = 0; m < points.rows(); ++m) {
+    tree.radius(points.row(m).transpose(), radius, near);
+    Eigen::Matrix3d covariance = Eigen::Matrix3d::Zero();
+    Eigen::Vector3d mean = Eigen::Vector3d::Zero();
+    for (const auto& [j, d2] : near) mean += points.row(j).transpose();
+    mean /= static_cast<double>(std::max<std::size_t>(near.size(), 1));
+    for (const auto& [j, d2] : near) covariance += (points.row(j).transpose() - mean) * (points.row(j) - mean.transpose());
+    Eigen::Vector3d normal = Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d>(covariance).eigenvectors().col(0);
+    if (normal.dot((points.row(m) - centre).transpose()) < 0.0) normal = -normal;
+    normals.row(m) = normal.transpose();
+  }
+  return normals;
+}
+
+// Initial poses: the category's frame turned about its up axis, centroids aligned.
+std::vector<Pose> initial_poses(const CategoryModel& model, const RegistrationSettings& settings) {
+  const Eigen::Vector3d canonical_centre = model.holistic().deformed(Eigen::VectorXd::Zero(model.holistic().dimensions()))
+                                              .colwise().mean().transpose();
+  std::vector<Pose> poses;
+  for (int k = 0; k < std::max(1, settings.restarts); ++k) {
+    Pose pose;
+    pose.rotation = Eigen::AngleAxisd(2.0 * M_PI * k / std::max(1, settings.restarts), settings.up.normalized());
+    pose.translation = -(pose.rotation * canonical_centre);
+    poses.push_back(pose);
+  }
+  return poses;
+}
+
+SpaceSolution best_of(const ShapeSpace& space, const Points& normals, const Observation& observation,
+                      const std::vector<Pose>& poses, const Eigen::VectorXd& latent, const RegistrationSettings& settings) {
+  SpaceSolution best;
+  best.cost = std::numeric_limits<double>::infinity();
+  for (const Pose& pose : poses) {
+    SpaceSolution candidate = detail::solve_space(space, normals, observation, latent, pose, settings);
+    if (candidate.cost < best.cost) best = std::move(candidate);
+  }
+  return best;
+}
+
+Eigen::Matrix4d to_data_frame(const Pose& pose, const CategoryModel& model, const Eigen::Vector3d& centroid) {
+  const double S = model.normalization.scale;
+  const Eigen::Matrix3d sR = pose.scale * pose.rotation.toRotationMatrix();
+  Eigen::Matrix4d T = Eigen::Matrix4d::Identity();
+  T.topLeftCorner<3, 3>() = sR;
+  T.topRightCorner<3, 1>() = S * pose.translation + centroid - sR * model.normalization.centre;
+  return T;
+}
+
+void record(RegistrationResult& result, const std::string& name, const SpaceSolution& solution,
+            const CategoryModel& model, const Eigen::Vector3d& centroid) {
+  SpaceFit fit{name, solution.latent, to_data_frame(solution.pose, model, centroid), solution.pose.scale,
+               solution.cost, solution.iterations, solution.seconds};
+  result.fits.push_back(fit);
+  for (std::size_t i = 0; i < solution.steps.size(); ++i)
+    result.history.push_back({name, solution.steps[i].first, to_data_frame(solution.steps[i].second, model, centroid),
+                              solution.step_costs[i], solution.step_seconds[i]});
+}
+
+Points rows_of(const Points& points, const std::vector<int>& rows) { return select_rows(points, rows); }
+
+FitStatistics fit_statistics(const Points& deformed, const Points& observed, double scale) {
+  const KdTree tree(observed);
+  std::vector<int> index;
+  Eigen::VectorXd squared;
+  tree.nearest_all(deformed, index, squared);
+  std::vector<double> distances(squared.data(), squared.data() + squared.size());
+  for (double& d : distances) d = std::sqrt(d);
+  FitStatistics fit;
+  fit.mean = std::accumulate(distances.begin(), distances.end(), 0.0) / static_cast<double>(distances.size());
+  const auto at = distances.begin() + static_cast<long>(0.9 * static_cast<double>(distances.size() - 1));
+  std::nth_element(distances.begin(), at, distances.end());
+  fit.p90 = *at;
+  fit.mean_normalised = fit.mean / scale;
+  fit.p90_normalised = fit.p90 / scale;
+  return fit;
+}
+
+}  // namespace
+
+Variant parse_variant(const std::string& name) {
+  if (name == "holistic") return Variant::holistic;
+  if (name == "partwise") return Variant::partwise;
+  if (name == "hol+part") return Variant::hol_part;
+  throw UsageError("unknown variant '" + name + "' (known: holistic, partwise, hol+part)");
+}
+
+std::string to_string(Variant variant) {
+  switch (variant) {
+    case Variant::holistic: return "holistic";
+    case Variant::partwise: return "partwise";
+    case Variant::hol_part: return "hol+part";
+  }
+  return "unknown";
+}
+
+Direction parse_direction(const std::string& name) {
+  if (name == "canonical") return Direction::canonical_to_observed;
+  if (name == "observed") return Direction::observed_to_canonical;
+  if (name == "symmetric") return Direction::symmetric;
+  throw UsageError("unknown direction '" + name + "' (known: canonical, observed, symmetric)");
+}
+
+Loss parse_loss(const std::string& name) {
+  if (name == "squared") return Loss::squared;
+  if (name == "huber") return Loss::huber;
+  if (name == "cauchy") return Loss::cauchy;
+  if (name == "trimmed") return Loss::trimmed;
+  throw UsageError("unknown loss '" + name + "' (known: squared, huber, cauchy, trimmed)");
+}
+
+RegistrationResult register_observation(const CategoryModel& model, const Points& observed,
+                                        const RegistrationSettings& settings) {
+  const auto start = std::chrono::steady_clock::now();
+  if (settings.variant != Variant::holistic && !model.has_parts())
+    throw UsageError("model '" + model.category + "' has no parts: use the holistic variant");
+  Eigen::Vector3d centroid;
+  const Observation observation = prepare_observation(model, observed, settings, centroid);
+  const Points normals = settings.viewpoint ? canonical_normals(model.canonical) : Points();
+  const std::vector<Pose> poses = initial_poses(model, settings);
+
+  RegistrationResult result;
+  result.variant = settings.variant;
+  Points deformed_normalised(model.canonical.rows(), 3);
+  const ShapeSpace& holistic = model.holistic();
+  SpaceSolution whole;
+  if (settings.variant != Variant::partwise) {
+    whole = best_of(holistic, normals, observation, poses, Eigen::VectorXd::Zero(holistic.dimensions()), settings);
+    record(result, holistic.name, whole, model, centroid);
+    deformed_normalised = whole.pose.apply(holistic.deformed(whole.latent));
+  }
+  if (settings.variant != Variant::holistic) {
+    // Parts are independent given their initialisation: solve them in parallel.
+    const Points holistic_displacement =
+        settings.variant == Variant::hol_part ? Points(holistic.deformed(whole.latent) - holistic.canonical) : Points();
+    std::vector<std::future<SpaceSolution>> parts;
+    for (std::size_t p = 1; p < model.spaces.size(); ++p) {
+      parts.push_back(std::async(std::launch::async, [&, p] {
+        const ShapeSpace& space = model.spaces[p];
+        const Points part_normals = normals.rows() ? rows_of(normals, space.point_indices) : Points();
+        if (settings.variant == Variant::partwise)
+          return best_of(space, part_normals, observation, poses, Eigen::VectorXd::Zero(space.dimensions()), settings);
+        const Eigen::VectorXd latent = space.project_displacement(rows_of(holistic_displacement, space.point_indices));
+        return detail::solve_space(space, part_normals, observation, latent, whole.pose, settings);
+      }));
+    }
+    for (std::size_t p = 1; p < model.spaces.size(); ++p) {
+      const SpaceSolution solution = parts[p - 1].get();
+      const ShapeSpace& space = model.spaces[p];
+      record(result, space.name, solution, model, centroid);
+      const Points posed = solution.pose.apply(space.deformed(solution.latent));
+      for (std::size_t i = 0; i < space.point_indices.size(); ++i)
+        deformed_normalised.row(space.point_indices[i]) = posed.row(static_cast<Eigen::Index>(i));
+    }
+  }
+  result.deformed = (deformed_normalised * model.normalization.scale).rowwise() + centroid.transpose();
+  result.part = model.canonical_part;
+  result.fit = fit_statistics(result.deformed, observed, model.normalization.scale);
+  result.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return result;
+}
+
+}  // namespace partreg::core

@@ -1,0 +1,44 @@
+#pragma once
+// Fitting one shape space and a pose to an observation with Ceres (internal to partreg_core).
+
+#include <Eigen/Geometry>
+#include <memory>
+#include <vector>
+
+#include "partreg/core/kdtree.hpp"
+#include "partreg/core/registration.hpp"
+
+namespace partreg::core::detail {
+
+/// The observation in normalised units: centred on its centroid, divided by the model's diagonal.
+struct Observation {
+  Points points;                       ///< downsampled, normalised
+  std::unique_ptr<KdTree> tree;        ///< over `points`
+  std::optional<Eigen::Vector3d> viewpoint;  ///< normalised observed frame
+};
+
+/// A similarity in normalised units: observed = scale * rotation * canonical + translation.
+struct Pose {
+  Eigen::Quaterniond rotation = Eigen::Quaterniond::Identity();
+  Eigen::Vector3d translation = Eigen::Vector3d::Zero();
+  double scale = 1.0;
+  Points apply(const Points& points) const;
+};
+
+struct SpaceSolution {
+  Eigen::VectorXd latent;
+  Pose pose;
+  double cost = 0.0;
+  int iterations = 0;
+  double seconds = 0.0;
+  std::vector<std::pair<Eigen::VectorXd, Pose>> steps;  ///< latent and pose after every outer step
+  std::vector<double> step_costs, step_seconds;
+};
+
+/// Fits `space` from the initial latent and pose. `normals` are outward normals of the space's canonical
+/// points (used only with a viewpoint).
+SpaceSolution solve_space(const ShapeSpace& space, const Points& normals, const Observation& observation,
+                          const Eigen::VectorXd& initial_latent, const Pose& initial_pose,
+                          const RegistrationSettings& settings);
+
+}  // namespace partreg::core::detail
