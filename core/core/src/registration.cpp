@@ -104,6 +104,26 @@ void record(RegistrationResult& result, const std::string& name, const SpaceSolu
 
 Points rows_of(const Points& points, const std::vector<int>& rows) { return select_rows(points, rows); }
 
+// Splits the observation by part: each observed point goes to the part of the nearest point of the
+// holistic fit (indexed by space; a part with fewer than 10 points gets no observation of its own).
+std::vector<Observation> split_observation(const CategoryModel& model, const Observation& observation,
+                                           const Points& holistic_posed) {
+  const KdTree tree(holistic_posed);
+  std::vector<std::vector<int>> rows(model.spaces.size());
+  for (Eigen::Index n = 0; n < observation.points.rows(); ++n) {
+    const int part = model.canonical_part[tree.nearest(observation.points.row(n).transpose()).first];
+    rows[static_cast<std::size_t>(part) + 1].push_back(static_cast<int>(n));
+  }
+  std::vector<Observation> split(model.spaces.size());
+  for (std::size_t p = 1; p < split.size(); ++p) {
+    if (rows[p].size() < 10) continue;
+    split[p].points = select_rows(observation.points, rows[p]);
+    split[p].tree = std::make_unique<KdTree>(split[p].points);
+    split[p].viewpoint = observation.viewpoint;
+  }
+  return split;
+}
+
 FitStatistics fit_statistics(const Points& deformed, const Points& observed, double scale) {
   const KdTree tree(observed);
   std::vector<int> index;
@@ -178,15 +198,26 @@ RegistrationResult register_observation(const CategoryModel& model, const Points
     // Parts are independent given their initialisation: solve them in parallel.
     const Points holistic_displacement =
         settings.variant == Variant::hol_part ? Points(holistic.deformed(whole.latent) - holistic.canonical) : Points();
+    // Summing over observed points needs the observation split by part: hol+part takes the split from the
+    // holistic fit; partwise has none, so its parts use the canonical direction only (Eq. 3).
+    std::vector<Observation> part_observations(model.spaces.size());
+    RegistrationSettings part_settings = settings;
+    if (settings.variant == Variant::hol_part)
+      part_observations = split_observation(model, observation, deformed_normalised);
+    else
+      part_settings.direction = Direction::canonical_to_observed;
     std::vector<std::future<SpaceSolution>> parts;
     for (std::size_t p = 1; p < model.spaces.size(); ++p) {
       parts.push_back(std::async(std::launch::async, [&, p] {
         const ShapeSpace& space = model.spaces[p];
         const Points part_normals = normals.rows() ? rows_of(normals, space.point_indices) : Points();
         if (settings.variant == Variant::partwise)
-          return best_of(space, part_normals, observation, poses, Eigen::VectorXd::Zero(space.dimensions()), settings);
+          return best_of(space, part_normals, observation, poses, Eigen::VectorXd::Zero(space.dimensions()), part_settings);
+        const Observation& own = part_observations[p].tree ? part_observations[p] : observation;
+        RegistrationSettings own_settings = settings;
+        if (!part_observations[p].tree) own_settings.direction = Direction::canonical_to_observed;
         const Eigen::VectorXd latent = space.project_displacement(rows_of(holistic_displacement, space.point_indices));
-        return detail::solve_space(space, part_normals, observation, latent, whole.pose, settings);
+        return detail::solve_space(space, part_normals, own, latent, whole.pose, own_settings);
       }));
     }
     for (std::size_t p = 1; p < model.spaces.size(); ++p) {

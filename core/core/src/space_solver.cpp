@@ -10,75 +10,81 @@
 namespace partreg::core::detail {
 namespace {
 
-constexpr int kMaxLatent = 10;
-
-// One deformed canonical point, posed, against one observed point (Eq. 3's summand). The deformed point is
-// base + K x (K: the point's three rows of G times the basis), so no kernel is evaluated here.
-template <int Q>
-struct PointResidual {
-  Eigen::Vector3d base;
-  Eigen::Matrix<double, 3, Q> rows;
-  Eigen::Vector3d target;
-
-  template <typename T>
-  bool operator()(const T* rotation, const T* translation, const T* scale, const T* latent, T* residual) const {
-    const Eigen::Map<const Eigen::Matrix<T, Q, 1>> x(latent);
-    const Eigen::Matrix<T, 3, 1> deformed = base.cast<T>() + rows.template cast<T>() * x;
-    const Eigen::Map<const Eigen::Quaternion<T>> q(rotation);
-    const Eigen::Map<const Eigen::Matrix<T, 3, 1>> t(translation);
-    Eigen::Map<Eigen::Matrix<T, 3, 1>> r(residual);
-    r = scale[0] * (q * deformed) + t - target.cast<T>();
-    return true;
-  }
-};
-
-// The Gaussian prior on the latent: x_k / sd_k, weighted.
-template <int Q>
-struct PriorResidual {
-  Eigen::Matrix<double, Q, 1> inverse_sd;
-  template <typename T>
-  bool operator()(const T* latent, T* residual) const {
-    for (int k = 0; k < Q; ++k) residual[k] = latent[k] * inverse_sd[k];
-    return true;
-  }
-};
-
 struct Pair {
   int row;                   ///< canonical row of the space
   Eigen::Vector3d target;    ///< observed point (normalised)
   double squared_distance;
+  double weight = 1.0;       ///< robust (IRLS) weight times the direction's 1 / count
 };
 
-template <int Q>
-ceres::CostFunction* point_cost(const ShapeSpace& space, const Pair& pair) {
-  auto* functor = new PointResidual<Q>;
-  const Eigen::Index m = space.point_count();
-  for (int d = 0; d < 3; ++d) {
-    functor->base[d] = space.canonical(pair.row, d) + space.kernel_mean[3 * pair.row + d];
-    for (int k = 0; k < Q; ++k) functor->rows(d, k) = space.kernel_basis(3 * pair.row + d, k);
+// Every correspondence of one outer step as one cost function with analytic derivatives:
+// r_i = sqrt(w_i) (s R (b_i + K_i x) + t - o_i), plus the prior sqrt(lambda) x_k / sd_k. One block instead of
+// thousands keeps Ceres' bookkeeping out of the per-point cost. b_i + K_i x is the deformed canonical point
+// (K_i: three rows of G times the basis), so no kernel is evaluated here.
+class StepCost : public ceres::CostFunction {
+ public:
+  StepCost(const ShapeSpace& space, std::vector<Pair> pairs, double prior_weight)
+      : space_(space), pairs_(std::move(pairs)), q_(space.dimensions()) {
+    inverse_sd_ = (prior_weight / space.variances.array().max(1e-12)).sqrt().matrix();
+    set_num_residuals(static_cast<int>(3 * pairs_.size()) + q_);
+    *mutable_parameter_block_sizes() = {4, 3, 1, q_};
   }
-  (void)m;
-  functor->target = pair.target;
-  return new ceres::AutoDiffCostFunction<PointResidual<Q>, 3, 4, 3, 1, Q>(functor);
-}
 
-template <int Q>
-ceres::CostFunction* prior_cost(const ShapeSpace& space, double weight) {
-  auto* functor = new PriorResidual<Q>;
-  for (int k = 0; k < Q; ++k) functor->inverse_sd[k] = std::sqrt(weight / std::max(space.variances[k], 1e-12));
-  return new ceres::AutoDiffCostFunction<PriorResidual<Q>, Q, Q>(functor);
-}
-
-// Ceres needs the latent size at compile time for automatic derivatives: dispatch 1..kMaxLatent.
-template <int Q = 1>
-ceres::CostFunction* make_cost(int q, const ShapeSpace& space, const Pair* pair, double prior_weight) {
-  if constexpr (Q > kMaxLatent) {
-    throw UsageError("shape spaces of more than " + std::to_string(kMaxLatent) + " dimensions are not supported");
-  } else {
-    if (q != Q) return make_cost<Q + 1>(q, space, pair, prior_weight);
-    return pair ? point_cost<Q>(space, *pair) : prior_cost<Q>(space, prior_weight);
+  bool Evaluate(double const* const* parameters, double* residuals, double** jacobians) const override {
+    const Eigen::Map<const Eigen::Quaterniond> rotation(parameters[0]);
+    const Eigen::Map<const Eigen::Vector3d> translation(parameters[1]);
+    const double scale = parameters[2][0];
+    const Eigen::Map<const Eigen::VectorXd> latent(parameters[3], q_);
+    const Eigen::Matrix3d R = rotation.toRotationMatrix();
+    const Eigen::Vector3d v = rotation.vec();
+    const double w = rotation.w();
+    using RowMajor = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;
+    for (std::size_t i = 0; i < pairs_.size(); ++i) {
+      const Pair& pair = pairs_[i];
+      const Eigen::Index row = 3 * pair.row;
+      const Eigen::Vector3d p = space_.canonical.row(pair.row).transpose() + space_.kernel_mean.segment<3>(row) +
+                                space_.kernel_basis.middleRows<3>(row) * latent;
+      const double root = std::sqrt(pair.weight);
+      const Eigen::Vector3d rotated = R * p;
+      Eigen::Map<Eigen::Vector3d>(residuals + 3 * i) = root * (scale * rotated + translation - pair.target);
+      if (!jacobians) continue;
+      const Eigen::Index offset = static_cast<Eigen::Index>(3 * i);
+      if (jacobians[0]) {  // d(R p)/d(x, y, z, w) of a unit quaternion, in Eigen's coefficient order
+        Eigen::Map<RowMajor> J(jacobians[0], num_residuals(), 4);
+        Eigen::Matrix3d skew_p;
+        skew_p << 0, -p.z(), p.y(), p.z(), 0, -p.x(), -p.y(), p.x(), 0;
+        const Eigen::Matrix3d d_vector = -2.0 * w * skew_p + 2.0 * (v.dot(p) * Eigen::Matrix3d::Identity() +
+                                                                     v * p.transpose() - 2.0 * p * v.transpose());
+        J.block(offset, 0, 3, 3) = root * scale * d_vector;
+        J.block(offset, 3, 3, 1) = root * scale * 2.0 * v.cross(p);
+      }
+      if (jacobians[1]) Eigen::Map<RowMajor>(jacobians[1], num_residuals(), 3).block(offset, 0, 3, 3) =
+                            root * Eigen::Matrix3d::Identity();
+      if (jacobians[2]) Eigen::Map<Eigen::VectorXd>(jacobians[2], num_residuals()).segment<3>(offset) = root * rotated;
+      if (jacobians[3])
+        Eigen::Map<RowMajor>(jacobians[3], num_residuals(), q_).block(offset, 0, 3, q_) =
+            root * scale * R * space_.kernel_basis.middleRows<3>(row);
+    }
+    const Eigen::Index prior = static_cast<Eigen::Index>(3 * pairs_.size());
+    Eigen::Map<Eigen::VectorXd>(residuals + prior, q_) = inverse_sd_.cwiseProduct(latent);
+    if (jacobians) {
+      if (jacobians[0]) Eigen::Map<RowMajor>(jacobians[0], num_residuals(), 4).bottomRows(q_).setZero();
+      if (jacobians[1]) Eigen::Map<RowMajor>(jacobians[1], num_residuals(), 3).bottomRows(q_).setZero();
+      if (jacobians[2]) Eigen::Map<Eigen::VectorXd>(jacobians[2], num_residuals()).tail(q_).setZero();
+      if (jacobians[3]) {
+        Eigen::Map<RowMajor> J(jacobians[3], num_residuals(), q_);
+        J.bottomRows(q_) = inverse_sd_.asDiagonal();
+      }
+    }
+    return true;
   }
-}
+
+ private:
+  const ShapeSpace& space_;
+  std::vector<Pair> pairs_;
+  int q_;
+  Eigen::VectorXd inverse_sd_;
+};
 
 Points deformed_points(const ShapeSpace& space, const Eigen::VectorXd& latent) { return space.deformed(latent); }
 
@@ -135,10 +141,22 @@ Correspondences correspond(const Points& posed, const std::vector<bool>& visible
   return result;
 }
 
-ceres::LossFunction* base_loss(const RegistrationSettings& settings) {
-  if (settings.loss == Loss::huber) return new ceres::HuberLoss(settings.loss_scale);
-  if (settings.loss == Loss::cauchy) return new ceres::CauchyLoss(settings.loss_scale);
-  return nullptr;
+// Iteratively reweighted least squares: each step weighs its correspondences by the robust loss at their
+// current distance (Huber or Cauchy), and every direction's term by 1 / count so both count equally.
+std::vector<Pair> weighted_pairs(const Correspondences& pairs, const RegistrationSettings& settings) {
+  std::vector<Pair> all;
+  for (const std::vector<Pair>* set : {&pairs.from_canonical, &pairs.from_observed}) {
+    const double share = set->empty() ? 0.0 : 1.0 / static_cast<double>(set->size());
+    for (Pair pair : *set) {
+      const double distance = std::sqrt(pair.squared_distance), c = settings.loss_scale;
+      double robust = 1.0;
+      if (settings.loss == Loss::huber && distance > c) robust = c / distance;
+      if (settings.loss == Loss::cauchy) robust = 1.0 / (1.0 + pair.squared_distance / (c * c));
+      pair.weight = share * robust;
+      all.push_back(pair);
+    }
+  }
+  return all;
 }
 
 }  // namespace
@@ -152,35 +170,26 @@ SpaceSolution solve_space(const ShapeSpace& space, const Points& normals, const 
                           const Eigen::VectorXd& initial_latent, const Pose& initial_pose,
                           const RegistrationSettings& settings) {
   const auto start = std::chrono::steady_clock::now();
-  const int q = space.dimensions();
   SpaceSolution solution;
   solution.latent = initial_latent;
   solution.pose = initial_pose;
   double previous = std::numeric_limits<double>::infinity();
   for (int outer = 0; outer < settings.outer_iterations; ++outer) {
+    const Eigen::VectorXd before_latent = solution.latent;
+    const Eigen::Vector3d before_translation = solution.pose.translation;
+    const Eigen::Quaterniond before_rotation = solution.pose.rotation;
     const Points posed = solution.pose.apply(deformed_points(space, solution.latent));
     const Correspondences pairs =
         correspond(posed, visible_rows(posed, normals, solution.pose, observation.viewpoint), observation, settings);
     if (pairs.from_canonical.empty() && pairs.from_observed.empty()) break;
 
-    ceres::Problem::Options problem_options;
-    problem_options.loss_function_ownership = ceres::DO_NOT_TAKE_OWNERSHIP;
-    ceres::Problem problem(problem_options);
+    ceres::Problem problem;
     double* rotation = solution.pose.rotation.coeffs().data();
     double* translation = solution.pose.translation.data();
     double* scale = &solution.pose.scale;
     double* latent = solution.latent.data();
-    // Each direction's term is a mean over its pairs, so the symmetric form weighs both equally.
-    std::unique_ptr<ceres::LossFunction> losses[2];
-    const std::vector<Pair>* sets[2] = {&pairs.from_canonical, &pairs.from_observed};
-    for (int s = 0; s < 2; ++s) {
-      if (sets[s]->empty()) continue;
-      losses[s] = std::make_unique<ceres::ScaledLoss>(base_loss(settings), 1.0 / static_cast<double>(sets[s]->size()),
-                                                      ceres::TAKE_OWNERSHIP);
-      for (const Pair& pair : *sets[s])
-        problem.AddResidualBlock(make_cost(q, space, &pair, 0.0), losses[s].get(), rotation, translation, scale, latent);
-    }
-    problem.AddResidualBlock(make_cost(q, space, nullptr, settings.prior_weight), nullptr, latent);
+    problem.AddResidualBlock(new StepCost(space, weighted_pairs(pairs, settings), settings.prior_weight), nullptr,
+                             rotation, translation, scale, latent);
     problem.SetManifold(rotation, new ceres::EigenQuaternionManifold);
     if (!settings.estimate_scale) problem.SetParameterBlockConstant(scale);
     else problem.SetParameterLowerBound(scale, 0, 0.2);
@@ -198,7 +207,12 @@ SpaceSolution solve_space(const ShapeSpace& space, const Points& normals, const 
     solution.steps.emplace_back(solution.latent, solution.pose);
     solution.step_costs.push_back(summary.final_cost);
     solution.step_seconds.push_back(std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
-    if (std::abs(previous - summary.final_cost) <= settings.tolerance * std::max(summary.final_cost, 1e-12)) break;
+    // Settled when neither the cost nor the parameters move any more (correspondences make the cost jitter).
+    const double moved = (solution.latent - before_latent).norm() + (solution.pose.translation - before_translation).norm() +
+                         solution.pose.rotation.angularDistance(before_rotation);
+    if (std::abs(previous - summary.final_cost) <= settings.tolerance * std::max(summary.final_cost, 1e-12) ||
+        moved < settings.tolerance)
+      break;
     previous = summary.final_cost;
   }
   solution.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
