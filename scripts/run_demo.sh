@@ -21,7 +21,7 @@ echo "== 3. what the model holds" >&2
 "$partreg" info "$out/mug.prm"
 
 echo "== 4. non-rigid CPD from one mug to another" >&2
-"$partreg" cpd "$out/mugs/mug_000" "$out/mugs/mug_001" --mode nonrigid --points 1000 \
+"$partreg" cpd "$out/mugs/mug_000/body.obj" "$out/mugs/mug_001/body.obj" --mode nonrigid --points 1000 \
   --out "$out/mug_000_on_mug_001.ply" --json "$out/cpd.json"
 
 echo "== done: outputs in $out" >&2

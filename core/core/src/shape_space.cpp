@@ -31,6 +31,21 @@ double subspace_distance(const Eigen::MatrixXd& a, const Eigen::MatrixXd& b) {
   return static_cast<double>(a.cols()) - (a.transpose() * b).squaredNorm();
 }
 
+// G(C, C) times each column of `fields` (3M x K, vectorised weight fields), vectorised the same way.
+Eigen::MatrixXd kernel_times_fields(const Points& canonical, const Eigen::MatrixXd& fields, double beta) {
+  const Eigen::Index m = canonical.rows(), k = fields.cols();
+  Eigen::MatrixXd stacked(m, 3 * k);
+  for (Eigen::Index i = 0; i < k; ++i) stacked.middleCols(3 * i, 3) = as_points(Eigen::VectorXd(fields.col(i)));
+  const Eigen::MatrixXd moved = apply_kernel(canonical, canonical, stacked, beta);
+  Eigen::MatrixXd out(3 * m, k);
+  for (Eigen::Index i = 0; i < k; ++i) {
+    Eigen::VectorXd column(3 * m);
+    Eigen::Map<Points>(column.data(), m, 3) = moved.middleCols(3 * i, 3);
+    out.col(i) = column;
+  }
+  return out;
+}
+
 }  // namespace
 
 Eigen::MatrixXd pca_em(const Eigen::MatrixXd& centred, const PcaEmSettings& settings, Eigen::VectorXd& variances) {
@@ -78,31 +93,25 @@ ShapeSpace learn_shape_space(const std::string& name, const std::vector<int>& po
     data.col(static_cast<Eigen::Index>(i)) = Eigen::Map<const Eigen::VectorXd>(training_weights[i].data(), 3 * m);
   }
 
+  // PCA runs on the displacements D_i = G W_i, which are what a shape is; W itself has large components
+  // along directions G nearly annihilates (the kernel is smooth), which would dominate a PCA of W without
+  // changing any shape. Each principal displacement is a combination D_c a of the centred training
+  // displacements, and the same combination W_c a of the fields is its W: G (W_c a) = D_c a exactly.
+  const Eigen::MatrixXd displacements = kernel_times_fields(canonical, data, beta);
   ShapeSpace space;
   space.name = name;
   space.point_indices = point_indices;
   space.canonical = canonical;
   space.beta = beta;
   space.mean = data.rowwise().mean();
-  const Eigen::MatrixXd centred = data.colwise() - space.mean;
+  space.kernel_mean = displacements.rowwise().mean();
+  const Eigen::MatrixXd centred_fields = data.colwise() - space.mean;
+  const Eigen::MatrixXd centred = displacements.colwise() - space.kernel_mean;
   space.total_variance = centred.squaredNorm() / static_cast<double>(data.cols() - 1);
-  space.basis = pca_em(centred, settings, space.variances);
-
-  // G times the mean and every basis field, once, so that inference never builds G again.
-  const Eigen::Index q = space.basis.cols();
-  Eigen::MatrixXd fields(m, 3 * (q + 1));
-  fields.leftCols(3) = as_points(space.mean);
-  for (Eigen::Index k = 0; k < q; ++k)
-    fields.middleCols(3 * (k + 1), 3) = as_points(Eigen::VectorXd(space.basis.col(k)));
-  const Eigen::MatrixXd displaced = apply_kernel(canonical, canonical, fields, beta);
-  auto vectorise = [m](const Eigen::MatrixXd& block) {
-    Eigen::VectorXd out(3 * m);
-    Eigen::Map<Points>(out.data(), m, 3) = block;
-    return out;
-  };
-  space.kernel_mean = vectorise(displaced.leftCols(3));
-  space.kernel_basis.resize(3 * m, q);
-  for (Eigen::Index k = 0; k < q; ++k) space.kernel_basis.col(k) = vectorise(displaced.middleCols(3 * (k + 1), 3));
+  space.kernel_basis = pca_em(centred, settings, space.variances);
+  const Eigen::MatrixXd combination =
+      centred.completeOrthogonalDecomposition().solve(space.kernel_basis);  // K x q: D_c a = basis column
+  space.basis = centred_fields * combination;
   return space;
 }
 
@@ -123,12 +132,12 @@ Points ShapeSpace::deformed(const Eigen::VectorXd& latent) const {
 
 Eigen::VectorXd ShapeSpace::project_weights(const Points& weights) const {
   const Eigen::Map<const Eigen::VectorXd> field(weights.data(), weights.size());
-  return basis.transpose() * (field - mean);
+  return basis.colPivHouseholderQr().solve(field - mean);
 }
 
 Eigen::VectorXd ShapeSpace::project_displacement(const Points& displacement) const {
   const Eigen::Map<const Eigen::VectorXd> field(displacement.data(), displacement.size());
-  return kernel_basis.colPivHouseholderQr().solve(field - kernel_mean);
+  return kernel_basis.transpose() * (field - kernel_mean);  // orthonormal columns
 }
 
 }  // namespace partreg::core

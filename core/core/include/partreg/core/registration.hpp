@@ -36,7 +36,7 @@ struct RegistrationSettings {
   Loss loss = Loss::huber;
   double loss_scale = 0.02;       ///< Huber/Cauchy scale (normalised length)
   double trim_fraction = 0.1;     ///< trimmed loss: share of the worst correspondences dropped each step
-  double prior_weight = 0.01;     ///< weight of the Gaussian prior sum_k x_k^2 / var_k against the data term
+  double prior_weight = 1e-4;     ///< weight of the Gaussian prior sum_k x_k^2 / var_k against the data term
   bool estimate_scale = false;    ///< also fit a uniform scale
   std::optional<Eigen::Vector3d> viewpoint;  ///< observed frame, data units: only canonical points facing it count
   int restarts = 1;               ///< initial rotations tried about the up axis (the lowest cost wins)

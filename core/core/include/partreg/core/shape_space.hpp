@@ -23,11 +23,13 @@ struct ShapeSpace {
   Points canonical;               ///< C: those canonical points (normalised units)
   double beta = 0.0;              ///< width of the Gaussian kernel G(C, C) used in training (normalised units)
   Eigen::VectorXd mean;           ///< mean of the vectorised training W (3M)
-  Eigen::MatrixXd basis;          ///< 3M x q orthonormal columns, ordered by decreasing variance
-  Eigen::VectorXd variances;      ///< variance of the training latents along each column (descending)
-  double total_variance = 0.0;    ///< total variance of the training W (sum over all 3M directions)
+  Eigen::MatrixXd basis;          ///< 3M x q weight fields W of the principal directions (G * basis = kernel_basis)
+  Eigen::VectorXd variances;      ///< variance of the training latents along each direction (descending)
+  double total_variance = 0.0;    ///< total variance of the training displacements (normalised length squared)
   Eigen::VectorXd kernel_mean;    ///< vec(G * mean W): the canonical's mean displacement (3M, normalised units)
-  Eigen::MatrixXd kernel_basis;   ///< column k is vec(G * basis_k): displacement per unit of latent k (3M x q)
+  /// Column k is vec(G * basis_k): displacement per unit of latent k (3M x q). Orthonormal, ordered by
+  /// variance: PCA-EM runs on the displacements, where shape lives (see learn_shape_space).
+  Eigen::MatrixXd kernel_basis;
 
   int dimensions() const { return static_cast<int>(basis.cols()); }
   int point_count() const { return static_cast<int>(canonical.rows()); }
@@ -37,9 +39,9 @@ struct ShapeSpace {
   Points weights(const Eigen::VectorXd& latent) const;
   /// C + G W(x): the deformed canonical, computed from kernel_mean/kernel_basis (no M x M kernel).
   Points deformed(const Eigen::VectorXd& latent) const;
-  /// Least-squares latent of a weight field: basis^T (vec W - mean).
+  /// Least-squares latent of a weight field.
   Eigen::VectorXd project_weights(const Points& weights) const;
-  /// Least-squares latent of a displacement field D (M x 3, D = G W): solves with kernel_basis.
+  /// Latent of a displacement field D (M x 3, D = G W): kernel_basis^T (vec D - kernel_mean).
   Eigen::VectorXd project_displacement(const Points& displacement) const;
 };
 
