@@ -22,6 +22,7 @@ int main(int argc, char** argv) {
   partreg::app::add_train_command(app);
   partreg::app::add_info_command(app);
   partreg::app::add_synth_command(app);
+  partreg::app::add_label_command(app);
   partreg::app::add_register_command(app);
 
   try {

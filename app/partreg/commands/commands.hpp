@@ -14,5 +14,6 @@ void add_train_command(CLI::App& app);
 void add_info_command(CLI::App& app);
 void add_synth_command(CLI::App& app);
 void add_register_command(CLI::App& app);
+void add_label_command(CLI::App& app);
 
 }  // namespace partreg::app

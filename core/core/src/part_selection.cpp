@@ -1,0 +1,69 @@
+#include "partreg/core/part_selection.hpp"
+
+#include <sstream>
+
+#include "partreg/core/errors.hpp"
+
+namespace partreg::core {
+namespace {
+
+std::vector<double> numbers(const std::string& text, std::size_t count, const std::string& what) {
+  std::vector<double> values;
+  std::stringstream in(text);
+  std::string item;
+  while (std::getline(in, item, ',')) {
+    char* end = nullptr;
+    values.push_back(std::strtod(item.c_str(), &end));
+    if (item.empty() || *end != '\0') throw UsageError(what + ": '" + item + "' is not a number");
+  }
+  if (values.size() != count)
+    throw UsageError(what + " takes " + std::to_string(count) + " comma-separated numbers, got " + std::to_string(values.size()));
+  return values;
+}
+
+bool contains(const PartSelector& selector, const Eigen::Vector3d& p) {
+  if (const auto* box = std::get_if<BoxSelector>(&selector))
+    return (p.array() >= box->min.array()).all() && (p.array() <= box->max.array()).all();
+  if (const auto* plane = std::get_if<PlaneSelector>(&selector)) return (p - plane->point).dot(plane->normal) >= 0.0;
+  const auto& sphere = std::get<SphereSelector>(selector);
+  return (p - sphere.centre).norm() <= sphere.radius;
+}
+
+}  // namespace
+
+PartSelector parse_box(const std::string& text) {
+  const auto v = numbers(text, 6, "--box");
+  const Eigen::Vector3d a(v[0], v[1], v[2]), b(v[3], v[4], v[5]);
+  return BoxSelector{a.cwiseMin(b), a.cwiseMax(b)};
+}
+
+PartSelector parse_plane(const std::string& text) {
+  const auto v = numbers(text, 6, "--plane");
+  const Eigen::Vector3d normal(v[3], v[4], v[5]);
+  if (normal.norm() == 0.0) throw UsageError("--plane needs a non-zero normal");
+  return PlaneSelector{Eigen::Vector3d(v[0], v[1], v[2]), normal.normalized()};
+}
+
+PartSelector parse_sphere(const std::string& text) {
+  const auto v = numbers(text, 4, "--sphere");
+  if (!(v[3] > 0.0)) throw UsageError("--sphere needs a positive radius");
+  return SphereSelector{Eigen::Vector3d(v[0], v[1], v[2]), v[3]};
+}
+
+std::vector<bool> select_points(const Points& points, const PartSelector& selector) {
+  std::vector<bool> selected(static_cast<std::size_t>(points.rows()));
+  for (Eigen::Index i = 0; i < points.rows(); ++i) selected[static_cast<std::size_t>(i)] = contains(selector, points.row(i).transpose());
+  return selected;
+}
+
+std::vector<bool> select_faces(const Mesh& mesh, const PartSelector& selector) {
+  std::vector<bool> selected(static_cast<std::size_t>(mesh.faces.rows()));
+  for (Eigen::Index f = 0; f < mesh.faces.rows(); ++f) {
+    const Eigen::Vector3d centroid = (mesh.vertices.row(mesh.faces(f, 0)) + mesh.vertices.row(mesh.faces(f, 1)) +
+                                      mesh.vertices.row(mesh.faces(f, 2))).transpose() / 3.0;
+    selected[static_cast<std::size_t>(f)] = contains(selector, centroid);
+  }
+  return selected;
+}
+
+}  // namespace partreg::core
