@@ -106,5 +106,62 @@ TEST_F(Cli, TrainRefusesPartFoldersThatDisagreeAndWritesNoModel) {
   EXPECT_FALSE(std::filesystem::exists(dir / "mug.prm"));
 }
 
+TEST_F(Cli, RegisterWritesItsOutputsAndRefusesBadInput) {
+  ASSERT_EQ(run("synth mug --out " + path("mugs") + " --instances 4 --seed 3").exit_code, 0);
+  ASSERT_EQ(run("train " + path("mugs") + " --out " + path("mug.prm") + " --points 300").exit_code, 0);
+  const std::string observed = path("mugs/ground_truth/mug_003.ply");
+  write("frames.json", R"({"format": "partreg-frames", "version": 1, "frames": [{"name": "grasp",
+      "position": [0.05, 0.05, 0.0], "rotation": [[1, 0, 0], [0, 1, 0], [0, 0, 1]]}]})");
+  const Outcome good = run("register " + path("mug.prm") + " " + observed + " --variant hol+part --json " + path("r.json") +
+                           " --points-out " + path("p.ply") + " --mesh-out " + path("m.obj") + " --frames " +
+                           path("frames.json") + " --frames-out " + path("moved.json") + " --truth " + observed);
+  ASSERT_EQ(good.exit_code, 0) << good.output;
+  for (const char* file : {"r.json", "p.ply", "m.obj", "moved.json"}) EXPECT_TRUE(std::filesystem::exists(dir / file)) << file;
+  std::ifstream json(dir / "r.json");
+  const std::string text{std::istreambuf_iterator<char>(json), {}};
+  for (const char* key : {"T_observed_canonical", "latent", "eq5_normalised", "p90", "\"handle\""})
+    EXPECT_NE(text.find(key), std::string::npos) << key;
+
+  write("few.xyz", "0 0 0\n1 0 0\n0 1 0\n0 0 1\n1 1 1\n");
+  write("nan.xyz", "nan nan nan\n");
+  std::string huge;
+  for (int i = 0; i < 50; ++i) huge += std::to_string(i * 10.0) + " " + std::to_string(i % 7 * 10.0) + " 0\n";
+  write("huge.xyz", huge);
+  write("skewed.json", R"({"format": "partreg-frames", "version": 1, "frames": [{"name": "bad",
+      "position": [0, 0, 0], "rotation": [[1, 0.5, 0], [0, 1, 0], [0, 0, 1]]}]})");
+  std::ifstream model_in(dir / "mug.prm", std::ios::binary);
+  std::string model{std::istreambuf_iterator<char>(model_in), {}};
+  model.replace(model.find("\"format_version\":1"), 18, "\"format_version\":2");
+  std::ofstream(dir / "v2.prm", std::ios::binary) << model;
+  const std::string out = " --points-out " + path("out.ply");
+  const std::vector<std::pair<std::string, int>> cases = {
+      {"register " + path("mug.prm") + " " + path("few.xyz") + out, 1},
+      {"register " + path("mug.prm") + " " + path("nan.xyz") + out, 1},
+      {"register " + path("mug.prm") + " " + path("huge.xyz") + out, 1},
+      {"register " + path("v2.prm") + " " + observed + out, 1},
+      {"register " + path("mug.prm") + " " + observed + " --variant sideways" + out, 2},
+      {"register " + path("mug.prm") + " " + observed + " --frames " + path("skewed.json") + " --frames-out " +
+           path("x.json") + out, 1},
+  };
+  for (const auto& [arguments, code] : cases) {
+    const Outcome result = run(arguments);
+    EXPECT_EQ(result.exit_code, code) << arguments << "\n" << result.output;
+    EXPECT_NE(result.output.find("partreg: "), std::string::npos) << result.output;
+  }
+  EXPECT_FALSE(std::filesystem::exists(dir / "out.ply"));
+  EXPECT_FALSE(std::filesystem::exists(dir / "x.json"));
+}
+
+TEST_F(Cli, LabelAssignsFacesAndRefusesAnEmptySelection) {
+  const std::string mesh = cube();
+  const Outcome good = run("label " + mesh + " --part lid --box -1,-1,0.9,2,2,2 --out " + path("l.json"));
+  ASSERT_EQ(good.exit_code, 0) << good.output;
+  EXPECT_NE(good.output.find("part lid: 2 faces"), std::string::npos) << good.output;
+  EXPECT_EQ(run("label " + mesh + " --part lid --box 5,5,5,6,6,6 --out " + path("none.json")).exit_code, 1);
+  EXPECT_EQ(run("label " + mesh + " --part lid --box 0,0,0,1,1,1 --sphere 0,0,0,1 --out " + path("two.json")).exit_code, 2);
+  EXPECT_EQ(run("label " + mesh + " --part lid --sphere 0,0,0,-1 --out " + path("neg.json")).exit_code, 2);
+  EXPECT_FALSE(std::filesystem::exists(dir / "none.json"));
+}
+
 }  // namespace
 }  // namespace partreg
