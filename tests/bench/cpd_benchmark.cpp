@@ -82,7 +82,13 @@ void BM_RigidCpdDrills(benchmark::State& state) {
     return;
   }
   const Points source = drill_at("drill_1.pcd", 1000), target = drill_at("drill_4.pcd", 1000);
-  for (auto _ : state) benchmark::DoNotOptimize(partreg::core::register_rigid(source, target, {}).moved.data());
+  int iterations = 0;
+  for (auto _ : state) {
+    const auto result = partreg::core::register_rigid(source, target, {});
+    iterations = result.iterations;
+    benchmark::DoNotOptimize(result.moved.data());
+  }
+  state.counters["em_iterations"] = iterations;
   state.counters["peak_rss_MB"] = peak_rss_mb();
 }
 BENCHMARK(BM_RigidCpdDrills)->Unit(benchmark::kMillisecond)->UseRealTime();

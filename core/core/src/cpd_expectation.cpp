@@ -1,5 +1,7 @@
 #include "cpd_expectation.hpp"
 
+#include "cpd_dense_kernel.hpp"
+
 #include <cmath>
 #include <mutex>
 
@@ -29,36 +31,41 @@ void merge(Expectation& total, const Partial& part, std::mutex& lock) {
   total.negative_log_likelihood += part.nll;
 }
 
-// Dense E-step over a range of target points, one target point at a time against all source points held
-// as separate coordinate arrays, so that every step (distances, exp, accumulation) is a vectorised array
-// operation. Scalar is float for the fast path (twice the SIMD width; EM weights need no more precision)
-// and double for the exact path.
-template <typename Scalar>
-void dense_range(const Points& moved, const Points& target, Eigen::Index begin, Eigen::Index end, double sigma2,
-                 double c, Partial& partial, Expectation& out) {
-  using Array = Eigen::Array<Scalar, Eigen::Dynamic, 1>;
+// Dense E-step over a range of target points, one target point at a time against all source points held as
+// separate coordinate arrays, so that distances, exp and sums are vectorised. The fast path computes in float
+// (twice the SIMD width; EM weights need no more) in a kernel of its own (cpd_dense_kernel.cpp); the exact
+// path in double here.
+void dense_range_fast(const Points& moved, const Points& target, Eigen::Index begin, Eigen::Index end, double sigma2,
+                      double c, Partial& partial, Expectation& out) {
   const Eigen::Index m = moved.rows();
-  const Array mx = moved.col(0).cast<Scalar>(), my = moved.col(1).cast<Scalar>(), mz = moved.col(2).cast<Scalar>();
-  Array p1 = Array::Zero(m), px = Array::Zero(m), py = Array::Zero(m), pz = Array::Zero(m), k(m);
-  const auto scale = static_cast<Scalar>(-0.5 / sigma2);
+  std::vector<float> buffer(static_cast<std::size_t>(8 * m), 0.0f);  // x y z, work, p1 px py pz
+  float* b = buffer.data();
+  for (Eigen::Index i = 0; i < m; ++i)
+    for (int d = 0; d < 3; ++d) b[d * m + i] = static_cast<float>(moved(i, d));
+  partial.nll -= dense_posterior_sums(b, b + m, b + 2 * m, m, target.data(), begin, end, static_cast<float>(-0.5 / sigma2),
+                                      c, b + 3 * m, b + 4 * m, b + 5 * m, b + 6 * m, b + 7 * m, out.Pt1.data());
+  for (Eigen::Index i = 0; i < m; ++i) {
+    partial.P1[i] += b[4 * m + i];
+    for (int d = 0; d < 3; ++d) partial.PX(i, d) += b[(5 + d) * m + i];
+  }
+}
+
+void dense_range_exact(const Points& moved, const Points& target, Eigen::Index begin, Eigen::Index end, double sigma2,
+                       double c, Partial& partial, Expectation& out) {
+  const Eigen::ArrayXd mx = moved.col(0), my = moved.col(1), mz = moved.col(2);
+  Eigen::ArrayXd k(moved.rows());
   for (Eigen::Index n = begin; n < end; ++n) {
-    const auto x = static_cast<Scalar>(target(n, 0)), y = static_cast<Scalar>(target(n, 1)),
-               z = static_cast<Scalar>(target(n, 2));
-    k = (((mx - x).square() + (my - y).square() + (mz - z).square()) * scale).exp();
-    // Floored: with w = 0 a target point far from every source point would otherwise divide by zero.
-    const double denominator = std::max(static_cast<double>(k.sum()) + c, kFloor);
-    k *= static_cast<Scalar>(1.0 / denominator);
-    p1 += k;
-    px += k * x;
-    py += k * y;
-    pz += k * z;
-    out.Pt1[n] = static_cast<double>(k.sum());
+    const double x = target(n, 0), y = target(n, 1), z = target(n, 2);
+    k = (((mx - x).square() + (my - y).square() + (mz - z).square()) * (-0.5 / sigma2)).exp();
+    const double denominator = std::max(k.sum() + c, kFloor);
+    k /= denominator;
+    partial.P1 += k.matrix();
+    partial.PX.col(0) += (k * x).matrix();
+    partial.PX.col(1) += (k * y).matrix();
+    partial.PX.col(2) += (k * z).matrix();
+    out.Pt1[n] = k.sum();
     partial.nll -= std::log(denominator);
   }
-  partial.P1 += p1.template cast<double>().matrix();
-  partial.PX.col(0) += px.template cast<double>().matrix();
-  partial.PX.col(1) += py.template cast<double>().matrix();
-  partial.PX.col(2) += pz.template cast<double>().matrix();
 }
 
 // Truncated E-step: only source points within the radius where the kernel exceeds `truncation`.
@@ -114,8 +121,8 @@ Expectation expectation(const Points& moved, const Points& target, double sigma2
   } else {
     parallel_for(n, [&](Eigen::Index begin, Eigen::Index end) {
       Partial partial(m);
-      if (precise) dense_range<double>(moved, target, begin, end, sigma2, c, partial, out);
-      else dense_range<float>(moved, target, begin, end, sigma2, c, partial, out);
+      if (precise) dense_range_exact(moved, target, begin, end, sigma2, c, partial, out);
+      else dense_range_fast(moved, target, begin, end, sigma2, c, partial, out);
       merge(out, partial, lock);
     }, threads, 128);
   }
@@ -133,7 +140,7 @@ double initial_sigma2(const Points& source, const Points& target) {
 
 bool use_truncation(const Points& moved, double sigma2, double truncation) {
   if (truncation <= 0.0) return false;
-  return truncation_radius(sigma2, truncation) < 0.2 * bounding_box_diagonal(moved);
+  return truncation_radius(sigma2, truncation) < 0.1 * bounding_box_diagonal(moved);
 }
 
 void check_cpd_points(const Points& points, const char* name) {
