@@ -195,7 +195,7 @@ SpaceSolution solve_space(const ShapeSpace& space, const Points& normals, const 
     else problem.SetParameterLowerBound(scale, 0, 0.2);
 
     ceres::Solver::Options options;
-    options.linear_solver_type = ceres::DENSE_QR;
+    options.linear_solver_type = ceres::DENSE_NORMAL_CHOLESKY;  // 13 unknowns, thousands of residuals
     options.max_num_iterations = settings.inner_iterations;
     options.num_threads = 1;  // parts run in parallel above this level
     options.logging_type = ceres::SILENT;

@@ -1,0 +1,59 @@
+// Registration speed on real data: canonical M = 1000, observed N = 2000, q = 5 (kettles: 4 parts).
+// Run: ./build/tests/bench/registration_benchmark --benchmark_repetitions=5 --benchmark_report_aggregates_only=true
+#include <benchmark/benchmark.h>
+
+#include <map>
+
+#include "partreg/core/registration.hpp"
+#include "partreg/core/training.hpp"
+#include "partreg/io/dataset.hpp"
+#include "support/shared_data.hpp"
+
+namespace {
+
+struct Setup {
+  partreg::core::CategoryModel model;
+  partreg::core::Points observed;
+};
+
+// Trains on all but the last instance, observes the last one at N points.
+const Setup* setup_for(const std::string& folder) {
+  static std::map<std::string, Setup> cache;
+  if (cache.count(folder)) return &cache[folder];
+  const auto path = partreg::testing::shared_data(folder);
+  if (!std::filesystem::exists(path)) return nullptr;
+  partreg::io::DatasetOptions options;
+  options.points_per_instance = 4000;
+  partreg::io::Dataset dataset = partreg::io::read_dataset(path, options);
+  Setup setup;
+  setup.observed = dataset.instances.back().points;
+  dataset.instances.pop_back();
+  setup.model = partreg::core::train_category(dataset.name, dataset.instances, dataset.part_names, {});
+  return &(cache[folder] = std::move(setup));
+}
+
+void run(benchmark::State& state, const std::string& folder, partreg::core::Variant variant) {
+  const Setup* setup = setup_for(folder);
+  if (!setup) {
+    state.SkipWithError(("shared data absent: ../shared/data/" + folder).c_str());
+    return;
+  }
+  partreg::core::RegistrationSettings settings;
+  settings.variant = variant;
+  settings.observed_points = 2000;
+  double fit = 0.0;
+  for (auto _ : state) fit = partreg::core::register_observation(setup->model, setup->observed, settings).fit.mean_normalised;
+  state.counters["M"] = static_cast<double>(setup->model.canonical.rows());
+  state.counters["fit_of_diagonal"] = fit;
+}
+
+void BM_KettleHolistic(benchmark::State& state) { run(state, "kettles", partreg::core::Variant::holistic); }
+void BM_KettleHolPart(benchmark::State& state) { run(state, "kettles", partreg::core::Variant::hol_part); }
+void BM_DrillHolistic(benchmark::State& state) { run(state, "drills", partreg::core::Variant::holistic); }
+BENCHMARK(BM_KettleHolistic)->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK(BM_KettleHolPart)->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK(BM_DrillHolistic)->Unit(benchmark::kMillisecond)->UseRealTime();
+
+}  // namespace
+
+BENCHMARK_MAIN();
