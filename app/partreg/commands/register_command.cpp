@@ -19,7 +19,7 @@ namespace {
 
 struct RegisterOptions {
   std::string model_path, observed_path, variant = "holistic", json_path, points_out, mesh_out;
-  std::string frames_path, frames_out, viewpoint, direction = "symmetric", loss = "huber", truth_path;
+  std::string frames_path, frames_out, viewpoint, direction = "observed", loss = "huber", truth_path;
   std::size_t mesh_samples = 3000;
   core::RegistrationSettings settings;
 };

@@ -32,7 +32,7 @@ Loss parse_loss(const std::string& name);            ///< "squared" | "huber" | 
 /// Registration settings. Lengths are in normalised units (the model's canonical diagonal is 1).
 struct RegistrationSettings {
   Variant variant = Variant::holistic;
-  Direction direction = Direction::symmetric;  ///< see docs/registration.md for the measurement
+  Direction direction = Direction::observed_to_canonical;  ///< measured best on partial views: docs/registration.md
   Loss loss = Loss::huber;
   double loss_scale = 0.02;       ///< Huber/Cauchy scale (normalised length)
   double trim_fraction = 0.1;     ///< trimmed loss: share of the worst correspondences dropped each step
