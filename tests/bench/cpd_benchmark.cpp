@@ -73,7 +73,13 @@ void BM_NonrigidCpdDrills(benchmark::State& state) {
   state.counters["em_iterations"] = iterations;
   state.counters["peak_rss_MB"] = peak_rss_mb();
 }
-BENCHMARK(BM_NonrigidCpdDrills)->Arg(500)->Arg(1000)->Arg(2000)->Arg(5000)->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK(BM_NonrigidCpdDrills)
+    ->Arg(500)
+    ->Arg(1000)
+    ->Arg(2000)
+    ->Arg(5000)
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime();
 
 void BM_RigidCpdDrills(benchmark::State& state) {
   const auto data = partreg::testing::shared_data("drills/drill_1.pcd");

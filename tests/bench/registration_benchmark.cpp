@@ -1,5 +1,6 @@
 // Registration speed on real data: canonical M = 1000, observed N = 2000, q = 5 (kettles: 4 parts).
-// Run: ./build/tests/bench/registration_benchmark --benchmark_repetitions=5 --benchmark_report_aggregates_only=true
+// Run: ./build/tests/bench/registration_benchmark --benchmark_repetitions=5
+// --benchmark_report_aggregates_only=true
 #include <benchmark/benchmark.h>
 
 #include <map>
@@ -42,7 +43,8 @@ void run(benchmark::State& state, const std::string& folder, partreg::core::Vari
   settings.variant = variant;
   settings.observed_points = 2000;
   double fit = 0.0;
-  for (auto _ : state) fit = partreg::core::register_observation(setup->model, setup->observed, settings).fit.mean_normalised;
+  for (auto _ : state)
+    fit = partreg::core::register_observation(setup->model, setup->observed, settings).fit.mean_normalised;
   state.counters["M"] = static_cast<double>(setup->model.canonical.rows());
   state.counters["fit_of_diagonal"] = fit;
 }

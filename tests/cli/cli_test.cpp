@@ -35,14 +35,16 @@ class Cli : public ::testing::Test {
   std::string cube() const {
     write("cube.obj",
           "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nv 0 0 1\nv 1 0 1\nv 1 1 1\nv 0 1 1\n"
-          "f 1 3 2\nf 1 4 3\nf 5 6 7\nf 5 7 8\nf 1 2 6\nf 1 6 5\nf 2 3 7\nf 2 7 6\nf 3 4 8\nf 3 8 7\nf 4 1 5\nf 4 5 8\n");
+          "f 1 3 2\nf 1 4 3\nf 5 6 7\nf 5 7 8\nf 1 2 6\nf 1 6 5\nf 2 3 7\nf 2 7 6\nf 3 4 8\nf 3 8 7\nf 4 1 "
+          "5\nf 4 5 8\n");
     return path("cube.obj");
   }
 };
 
 TEST_F(Cli, CpdWritesTheMovedPointsAndAJsonReport) {
   const std::string mesh = cube();
-  const Outcome result = run("cpd " + mesh + " " + mesh + " --mode rigid --points 300 --out " + path("out.ply") + " --json " + path("r.json"));
+  const Outcome result = run("cpd " + mesh + " " + mesh + " --mode rigid --points 300 --out " +
+                             path("out.ply") + " --json " + path("r.json"));
   EXPECT_EQ(result.exit_code, 0) << result.output;
   EXPECT_TRUE(std::filesystem::exists(dir / "out.ply"));
   std::ifstream json(dir / "r.json");
@@ -77,7 +79,8 @@ TEST_F(Cli, BadInputGetsOneLineAndTheRightExitCodeAndNoOutput) {
     EXPECT_NE(result.output.find("partreg: "), std::string::npos) << arguments << "\n" << result.output;
   }
   for (const std::string& name : dir.entries())
-    EXPECT_TRUE(name == "cube.obj" || name == "empty.ply" || name == "nan.xyz" || name == "flat.obj" || name == "cloud.abc")
+    EXPECT_TRUE(name == "cube.obj" || name == "empty.ply" || name == "nan.xyz" || name == "flat.obj" ||
+                name == "cloud.abc")
         << "left behind: " << name;
 }
 
@@ -112,11 +115,13 @@ TEST_F(Cli, RegisterWritesItsOutputsAndRefusesBadInput) {
   const std::string observed = path("mugs/ground_truth/mug_003.ply");
   write("frames.json", R"({"format": "partreg-frames", "version": 1, "frames": [{"name": "grasp",
       "position": [0.05, 0.05, 0.0], "rotation": [[1, 0, 0], [0, 1, 0], [0, 0, 1]]}]})");
-  const Outcome good = run("register " + path("mug.prm") + " " + observed + " --variant hol+part --json " + path("r.json") +
-                           " --points-out " + path("p.ply") + " --mesh-out " + path("m.obj") + " --frames " +
-                           path("frames.json") + " --frames-out " + path("moved.json") + " --truth " + observed);
+  const Outcome good =
+      run("register " + path("mug.prm") + " " + observed + " --variant hol+part --json " + path("r.json") +
+          " --points-out " + path("p.ply") + " --mesh-out " + path("m.obj") + " --frames " +
+          path("frames.json") + " --frames-out " + path("moved.json") + " --truth " + observed);
   ASSERT_EQ(good.exit_code, 0) << good.output;
-  for (const char* file : {"r.json", "p.ply", "m.obj", "moved.json"}) EXPECT_TRUE(std::filesystem::exists(dir / file)) << file;
+  for (const char* file : {"r.json", "p.ply", "m.obj", "moved.json"})
+    EXPECT_TRUE(std::filesystem::exists(dir / file)) << file;
   std::ifstream json(dir / "r.json");
   const std::string text{std::istreambuf_iterator<char>(json), {}};
   for (const char* key : {"T_observed_canonical", "latent", "eq5_normalised", "p90", "\"handle\""})
@@ -140,8 +145,9 @@ TEST_F(Cli, RegisterWritesItsOutputsAndRefusesBadInput) {
       {"register " + path("mug.prm") + " " + path("huge.xyz") + out, 1},
       {"register " + path("v2.prm") + " " + observed + out, 1},
       {"register " + path("mug.prm") + " " + observed + " --variant sideways" + out, 2},
-      {"register " + path("mug.prm") + " " + observed + " --frames " + path("skewed.json") + " --frames-out " +
-           path("x.json") + out, 1},
+      {"register " + path("mug.prm") + " " + observed + " --frames " + path("skewed.json") +
+           " --frames-out " + path("x.json") + out,
+       1},
   };
   for (const auto& [arguments, code] : cases) {
     const Outcome result = run(arguments);
@@ -158,7 +164,9 @@ TEST_F(Cli, LabelAssignsFacesAndRefusesAnEmptySelection) {
   ASSERT_EQ(good.exit_code, 0) << good.output;
   EXPECT_NE(good.output.find("part lid: 2 faces"), std::string::npos) << good.output;
   EXPECT_EQ(run("label " + mesh + " --part lid --box 5,5,5,6,6,6 --out " + path("none.json")).exit_code, 1);
-  EXPECT_EQ(run("label " + mesh + " --part lid --box 0,0,0,1,1,1 --sphere 0,0,0,1 --out " + path("two.json")).exit_code, 2);
+  EXPECT_EQ(run("label " + mesh + " --part lid --box 0,0,0,1,1,1 --sphere 0,0,0,1 --out " + path("two.json"))
+                .exit_code,
+            2);
   EXPECT_EQ(run("label " + mesh + " --part lid --sphere 0,0,0,-1 --out " + path("neg.json")).exit_code, 2);
   EXPECT_FALSE(std::filesystem::exists(dir / "none.json"));
 }

@@ -60,7 +60,8 @@ TEST(RigidCpd, EstimatesScale) {
   EXPECT_NEAR(result.scale, 1.7, 0.01);
   EXPECT_LT(rotation_error_deg(result.rotation, R), 0.5);
   const Eigen::Matrix4d T = result.T_target_source();
-  const Eigen::Vector3d mapped = T.topLeftCorner<3, 3>() * source.row(7).transpose() + T.topRightCorner<3, 1>();
+  const Eigen::Vector3d mapped =
+      T.topLeftCorner<3, 3>() * source.row(7).transpose() + T.topRightCorner<3, 1>();
   EXPECT_LT((mapped - target.row(7).transpose()).norm(), 0.01);
 }
 
@@ -97,7 +98,7 @@ TEST(NonrigidCpd, ReachesASmoothlyDisplacedTarget) {
   const NonrigidCpdResult result = register_nonrigid(source, target, settings);
   EXPECT_LT(mean_row_distance(result.moved, target), 0.01 * diagonal);
   ASSERT_GT(mean_row_distance(source, target), 0.03 * diagonal);  // the undeformed source would fail
-  EXPECT_GT(result.kernel_rank, 0);  // 700 points: the fast path ran
+  EXPECT_GT(result.kernel_rank, 0);                               // 700 points: the fast path ran
 }
 
 TEST(NonrigidCpd, FastPathAgreesWithExactPath) {

@@ -26,7 +26,8 @@ std::vector<Points> low_rank_fields(int m, int count, int rank, std::mt19937_64&
   std::vector<Points> fields;
   for (int i = 0; i < count; ++i) {
     Points field = Points::Constant(m, 3, 0.01);
-    for (int k = 0; k < rank; ++k) field += (normal(generator) / (1 + k)) * directions[static_cast<std::size_t>(k)];
+    for (int k = 0; k < rank; ++k)
+      field += (normal(generator) / (1 + k)) * directions[static_cast<std::size_t>(k)];
     for (Eigen::Index j = 0; j < field.size(); ++j) field.data()[j] += 1e-4 * normal(generator);
     fields.push_back(field);
   }
@@ -41,7 +42,8 @@ std::vector<int> iota(int count) {
 
 double reconstruction_error(const ShapeSpace& space, const std::vector<Points>& fields) {
   double error = 0.0;
-  for (const Points& field : fields) error += (space.weights(space.project_weights(field)) - field).squaredNorm();
+  for (const Points& field : fields)
+    error += (space.weights(space.project_weights(field)) - field).squaredNorm();
   return error;
 }
 
@@ -61,7 +63,8 @@ TEST(PcaEm, AgreesWithThePrincipalSubspaceOfAnSvd) {
   std::mt19937_64 generator(5);
   const auto fields = low_rank_fields(150, 8, 6, generator);
   Eigen::MatrixXd data(450, 8);
-  for (int i = 0; i < 8; ++i) data.col(i) = Eigen::Map<const Eigen::VectorXd>(fields[static_cast<std::size_t>(i)].data(), 450);
+  for (int i = 0; i < 8; ++i)
+    data.col(i) = Eigen::Map<const Eigen::VectorXd>(fields[static_cast<std::size_t>(i)].data(), 450);
   const Eigen::MatrixXd centred = data.colwise() - data.rowwise().mean();
   Eigen::VectorXd variances;
   PcaEmSettings settings;
@@ -82,7 +85,8 @@ TEST(ShapeSpace, ReconstructionErrorFallsAsDimensionsGrow) {
   for (int q = 1; q <= 6; ++q) {
     PcaEmSettings settings;
     settings.dimensions = q;
-    const double error = reconstruction_error(learn_shape_space("h", iota(120), canonical, 0.3, fields, settings), fields);
+    const double error =
+        reconstruction_error(learn_shape_space("h", iota(120), canonical, 0.3, fields, settings), fields);
     EXPECT_LT(error, previous) << "q = " << q;
     previous = error;
   }
@@ -106,8 +110,9 @@ TEST(ShapeSpace, RefusesTooFewOrMismatchedFields) {
   std::mt19937_64 generator(13);
   const Points canonical = random_points(30, generator);
   EXPECT_THROW(learn_shape_space("h", iota(30), canonical, 0.3, {Points::Zero(30, 3)}, {}), InputError);
-  EXPECT_THROW(learn_shape_space("h", iota(30), canonical, 0.3, {Points::Zero(30, 3), Points::Zero(29, 3)}, {}),
-               InputError);
+  EXPECT_THROW(
+      learn_shape_space("h", iota(30), canonical, 0.3, {Points::Zero(30, 3), Points::Zero(29, 3)}, {}),
+      InputError);
 }
 
 }  // namespace

@@ -25,7 +25,8 @@ TEST(Synthetic, IsDeterministicAndVariesWithTheSeed) {
   EXPECT_EQ(a.shape_parameters, b.shape_parameters);
   EXPECT_NE(a.shape_parameters, c.shape_parameters);
   EXPECT_EQ(a.parts[2].mesh.vertices, b.parts[2].mesh.vertices);
-  EXPECT_EQ(part_names(SyntheticCategory::spray_bottle), (std::vector<std::string>{"body", "neck", "trigger"}));
+  EXPECT_EQ(part_names(SyntheticCategory::spray_bottle),
+            (std::vector<std::string>{"body", "neck", "trigger"}));
   EXPECT_THROW(parse_synthetic_category("teapot"), UsageError);
 }
 
@@ -37,10 +38,13 @@ TEST(Synthetic, CorrespondencesLieOnTheSurfaceAndMeanTheSamePlace) {
     for (int part = 0; part < 2; ++part) {
       const KdTree tree(mug.parts[static_cast<std::size_t>(part)].mesh.vertices);
       for (Eigen::Index i = 0; i < gt.points.rows(); ++i)
-        if (gt.part[i] == part) EXPECT_LT(std::sqrt(tree.nearest(gt.points.row(i).transpose()).second), 0.015);
+        if (gt.part[i] == part)
+          EXPECT_LT(std::sqrt(tree.nearest(gt.points.row(i).transpose()).second), 0.015);
     }
-    // The same row is the same semantic point: the handle's outermost point (u = 0.5) is at +x, beyond the body.
-    const Eigen::Vector3d outer = evaluate_surface(SyntheticCategory::mug, mug.shape_parameters, 1, 0.5, 0.25);
+    // The same row is the same semantic point: the handle's outermost point (u = 0.5) is at +x, beyond the
+    // body.
+    const Eigen::Vector3d outer =
+        evaluate_surface(SyntheticCategory::mug, mug.shape_parameters, 1, 0.5, 0.25);
     EXPECT_GT(outer.x(), mug.shape_parameters[0]);
   }
 }
@@ -72,7 +76,8 @@ TEST(Training, AHeldOutMugIsReconstructedBetterByTheSpaceThanByTheMean) {
   const Points displacement = result.moved - model.canonical;
   const Eigen::VectorXd latent = space.project_displacement(displacement);
   const double by_space = (space.deformed(latent) - result.moved).rowwise().norm().mean();
-  const double by_mean = (space.deformed(Eigen::VectorXd::Zero(space.dimensions())) - result.moved).rowwise().norm().mean();
+  const double by_mean =
+      (space.deformed(Eigen::VectorXd::Zero(space.dimensions())) - result.moved).rowwise().norm().mean();
   EXPECT_LT(by_space, 0.8 * by_mean) << "space " << by_space << " mean " << by_mean;
 }
 

@@ -36,14 +36,16 @@ void expect_better_than_rigid_mean(const LeaveOneOut& setup, const std::vector<c
   core::RegistrationSettings rigid;
   rigid.prior_weight = 1e6;
   const double rigid_error =
-      core::closest_point_error(core::register_observation(setup.model, setup.observed, rigid).deformed, setup.observed) / scale2;
+      core::closest_point_error(core::register_observation(setup.model, setup.observed, rigid).deformed,
+                                setup.observed) /
+      scale2;
   for (core::Variant variant : variants) {
     core::RegistrationSettings settings;
     settings.variant = variant;
     const auto result = core::register_observation(setup.model, setup.observed, settings);
     const double error = core::closest_point_error(result.deformed, setup.observed) / scale2;
-    std::cerr << setup.model.category << " " << core::to_string(variant) << ": Eq. 5 " << error << " (rigid mean shape "
-              << rigid_error << ")\n";
+    std::cerr << setup.model.category << " " << core::to_string(variant) << ": Eq. 5 " << error
+              << " (rigid mean shape " << rigid_error << ")\n";
     EXPECT_LT(error, 0.9 * rigid_error) << core::to_string(variant);  // at least 10% better
   }
 }

@@ -1,4 +1,6 @@
 // Tests on the real object data in ../shared/data (skipped, saying so, where it is absent).
+#include "support/shared_data.hpp"
+
 #include <gtest/gtest.h>
 
 #include "partreg/core/cpd.hpp"
@@ -9,7 +11,6 @@
 #include "partreg/io/dataset.hpp"
 #include "partreg/io/geometry_io.hpp"
 #include "partreg/io/mesh_io.hpp"
-#include "support/shared_data.hpp"
 #include "support/test_shapes.hpp"
 
 namespace partreg {
@@ -23,7 +24,8 @@ TEST(SharedData, EveryFileReads) {
   int files = 0;
   for (const auto& entry : std::filesystem::recursive_directory_iterator(root)) {
     const std::string extension = entry.path().extension().string();
-    if (!entry.is_regular_file() || (extension != ".pcd" && extension != ".obj" && extension != ".ply")) continue;
+    if (!entry.is_regular_file() || (extension != ".pcd" && extension != ".obj" && extension != ".ply"))
+      continue;
     SCOPED_TRACE(entry.path().string());
     if (io::is_mesh_file(entry.path())) {
       const core::Mesh mesh = io::read_mesh(entry.path());
@@ -54,7 +56,8 @@ void expect_rigid_recovery(const core::Points& shape) {
   std::uniform_real_distribution<double> uniform(0.0, 1.0);
   const Eigen::RowVector3d low = target.colwise().minCoeff(), high = target.colwise().maxCoeff();
   for (Eigen::Index i = 0; i < outliers; ++i)
-    for (int d = 0; d < 3; ++d) with_outliers(target.rows() + i, d) = low[d] + uniform(generator) * (high[d] - low[d]);
+    for (int d = 0; d < 3; ++d)
+      with_outliers(target.rows() + i, d) = low[d] + uniform(generator) * (high[d] - low[d]);
   core::RigidCpdSettings settings;
   settings.outlier_weight = 0.2;
   const auto result = core::register_rigid(shape, with_outliers, settings);
@@ -78,7 +81,8 @@ TEST(SharedData, RigidCpdRecoversAPoseOfASampledShapeNetMug) {
 TEST(SharedData, NonrigidCpdBringsOneDrillOntoAnother) {
   const auto a = shared_data("drills/drill_1.pcd"), b = shared_data("drills/drill_2.pcd");
   PARTREG_REQUIRE_SHARED_DATA(a);
-  const core::Points source = io::read_cloud_file(a).cloud.points, target = io::read_cloud_file(b).cloud.points;
+  const core::Points source = io::read_cloud_file(a).cloud.points,
+                     target = io::read_cloud_file(b).cloud.points;
   const core::KdTree tree(target);
   auto mean_distance = [&](const core::Points& points) {
     std::vector<int> index;

@@ -20,6 +20,7 @@ int main(int argc, char** argv) {
   core::Frame grasp;  // a grasp pose labelled once on the canonical, in the category's frame
   grasp.position = model.normalization.undo(model.canonical.topRows(1)).row(0).transpose();
   const core::Frame moved = core::transfer_frames(model, result, {grasp}).front();
-  std::cout << "fit " << result.fit.mean_normalised << " of the diagonal; grasp at " << moved.position.transpose() << '\n';
+  std::cout << "fit " << result.fit.mean_normalised << " of the diagonal; grasp at "
+            << moved.position.transpose() << '\n';
   return result.fit.mean_normalised < 0.05 ? 0 : 1;
 }

@@ -22,7 +22,9 @@ core::Cloud small_cloud() {
   return cloud;
 }
 
-void write_text(const std::filesystem::path& path, const std::string& text) { std::ofstream(path, std::ios::binary) << text; }
+void write_text(const std::filesystem::path& path, const std::string& text) {
+  std::ofstream(path, std::ios::binary) << text;
+}
 
 TEST(CloudIo, PlyRoundTripsBinaryAndAsciiWithNormalsAndAttributes) {
   testing::TempDir dir;
@@ -44,7 +46,9 @@ TEST(CloudIo, PlyRoundTripsBinaryAndAsciiWithNormalsAndAttributes) {
 
 TEST(CloudIo, ReadsBigEndianPly) {
   testing::TempDir dir;
-  std::string data = "ply\nformat binary_big_endian 1.0\nelement vertex 2\nproperty float x\nproperty float y\nproperty float z\nend_header\n";
+  std::string data =
+      "ply\nformat binary_big_endian 1.0\nelement vertex 2\nproperty float x\nproperty float y\nproperty "
+      "float z\nend_header\n";
   for (float value : {1.0f, 2.0f, 3.0f, -4.0f, 5.5f, 6.0f}) {
     char bytes[4];
     std::memcpy(bytes, &value, 4);
@@ -70,8 +74,9 @@ TEST(CloudIo, ReadsXyzAndDropsNaNPoints) {
 // PCD writers by hand: ascii, binary, and binary_compressed with an LZF stream made only of literal runs
 // (a valid LZF encoding), so the test needs no PCL of its own.
 std::string pcd_header(const std::string& data, int points) {
-  return "# .PCD v0.7\nVERSION 0.7\nFIELDS x y z\nSIZE 4 4 4\nTYPE F F F\nCOUNT 1 1 1\nWIDTH " + std::to_string(points) +
-         "\nHEIGHT 1\nVIEWPOINT 0 0 0 1 0 0 0\nPOINTS " + std::to_string(points) + "\nDATA " + data + "\n";
+  return "# .PCD v0.7\nVERSION 0.7\nFIELDS x y z\nSIZE 4 4 4\nTYPE F F F\nCOUNT 1 1 1\nWIDTH " +
+         std::to_string(points) + "\nHEIGHT 1\nVIEWPOINT 0 0 0 1 0 0 0\nPOINTS " + std::to_string(points) +
+         "\nDATA " + data + "\n";
 }
 
 std::string lzf_literals(const std::string& raw) {
@@ -88,13 +93,17 @@ TEST(CloudIo, ReadsPcdAsciiBinaryAndBinaryCompressed) {
   testing::TempDir dir;
   const std::vector<float> xyz = {0, 0, 0, 1, 2, 3, NAN, NAN, NAN, -1, -2, -3};
   write_text(dir / "a.pcd", pcd_header("ascii", 4) + "0 0 0\n1 2 3\nnan nan nan\n-1 -2 -3\n");
-  write_text(dir / "b.pcd", pcd_header("binary", 4) + std::string(reinterpret_cast<const char*>(xyz.data()), xyz.size() * 4));
+  write_text(dir / "b.pcd", pcd_header("binary", 4) +
+                                std::string(reinterpret_cast<const char*>(xyz.data()), xyz.size() * 4));
   std::string planar;  // binary_compressed stores each field's values together
   for (int field = 0; field < 3; ++field)
-    for (int point = 0; point < 4; ++point) planar.append(reinterpret_cast<const char*>(&xyz[point * 3 + field]), 4);
+    for (int point = 0; point < 4; ++point)
+      planar.append(reinterpret_cast<const char*>(&xyz[point * 3 + field]), 4);
   const std::string compressed = lzf_literals(planar);
-  std::uint32_t sizes[2] = {static_cast<std::uint32_t>(compressed.size()), static_cast<std::uint32_t>(planar.size())};
-  write_text(dir / "c.pcd", pcd_header("binary_compressed", 4) + std::string(reinterpret_cast<char*>(sizes), 8) + compressed);
+  std::uint32_t sizes[2] = {static_cast<std::uint32_t>(compressed.size()),
+                            static_cast<std::uint32_t>(planar.size())};
+  write_text(dir / "c.pcd", pcd_header("binary_compressed", 4) +
+                                std::string(reinterpret_cast<char*>(sizes), 8) + compressed);
   for (const char* name : {"a.pcd", "b.pcd", "c.pcd"}) {
     const CloudFile read = read_cloud_file(dir / name);
     ASSERT_EQ(read.cloud.points.rows(), 3) << name;

@@ -40,9 +40,11 @@ TEST(MeshIo, ObjAndPlyRoundTrip) {
 
 TEST(MeshIo, ReadsStlAndOffThroughAssimp) {
   testing::TempDir dir;
-  std::ofstream(dir / "t.off") << "OFF\n4 4 0\n0 0 0\n1 0 0\n0 1 0\n0 0 1\n3 0 2 1\n3 0 1 3\n3 0 3 2\n3 1 2 3\n";
-  std::ofstream(dir / "t.stl") << "solid t\nfacet normal 0 0 1\nouter loop\nvertex 0 0 0\nvertex 1 0 0\nvertex 0 1 0\n"
-                                  "endloop\nendfacet\nendsolid t\n";
+  std::ofstream(dir / "t.off")
+      << "OFF\n4 4 0\n0 0 0\n1 0 0\n0 1 0\n0 0 1\n3 0 2 1\n3 0 1 3\n3 0 3 2\n3 1 2 3\n";
+  std::ofstream(dir / "t.stl")
+      << "solid t\nfacet normal 0 0 1\nouter loop\nvertex 0 0 0\nvertex 1 0 0\nvertex 0 1 0\n"
+         "endloop\nendfacet\nendsolid t\n";
   EXPECT_EQ(read_mesh(dir / "t.off").faces.rows(), 4);
   EXPECT_EQ(read_mesh(dir / "t.stl").faces.rows(), 1);
 }
@@ -60,7 +62,8 @@ core::CategoryModel small_model() {
   for (const auto& synthetic : core::make_synthetic_category(core::SyntheticCategory::mug, 4, 3)) {
     core::TrainingInstance instance;
     instance.name = synthetic.name;
-    const auto samples = core::sample_correspondences(core::SyntheticCategory::mug, synthetic.shape_parameters, 600, 5);
+    const auto samples =
+        core::sample_correspondences(core::SyntheticCategory::mug, synthetic.shape_parameters, 600, 5);
     instance.points = samples.points;
     instance.part = samples.part;
     instances.push_back(instance);
@@ -90,7 +93,8 @@ TEST(ModelFile, SavesAndLoadsBitForBit) {
   // Writing what was read gives the same bytes.
   write_model(dir / "again.prm", read);
   std::ifstream a(dir / "m.prm", std::ios::binary), b(dir / "again.prm", std::ios::binary);
-  EXPECT_EQ(std::string(std::istreambuf_iterator<char>(a), {}), std::string(std::istreambuf_iterator<char>(b), {}));
+  EXPECT_EQ(std::string(std::istreambuf_iterator<char>(a), {}),
+            std::string(std::istreambuf_iterator<char>(b), {}));
 }
 
 std::string read_bytes(const std::filesystem::path& path) {

@@ -19,7 +19,8 @@ inline core::Points asymmetric_shape(int count, std::uint64_t seed) {
   for (int i = 0; i < count; ++i) {
     const double u = 2.0 * M_PI * uniform(generator), v = std::acos(2.0 * uniform(generator) - 1.0);
     if (i % 4 != 3) {
-      points.row(i) << 0.5 * std::sin(v) * std::cos(u), 0.3 * std::sin(v) * std::sin(u), 0.2 * std::cos(v) + 0.05 * std::cos(3 * u);
+      points.row(i) << 0.5 * std::sin(v) * std::cos(u), 0.3 * std::sin(v) * std::sin(u),
+          0.2 * std::cos(v) + 0.05 * std::cos(3 * u);
     } else {  // a handle: a quarter-thick ring in the x-z plane, offset to +x and tilted up
       const double ring = 0.18 + 0.04 * std::cos(v * 2.0);
       points.row(i) << 0.55 + ring * std::cos(u), 0.04 * std::sin(2.0 * v), 0.1 + ring * std::sin(u) * 0.7;

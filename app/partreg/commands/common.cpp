@@ -34,4 +34,23 @@ void write_json_or_stdout(const nlohmann::json& report, const std::string& path)
   std::cerr << "wrote " << path << '\n';
 }
 
+nlohmann::json matrix_json(const Eigen::Matrix4d& matrix) {
+  nlohmann::json rows = nlohmann::json::array();
+  for (int r = 0; r < 4; ++r) rows.push_back({matrix(r, 0), matrix(r, 1), matrix(r, 2), matrix(r, 3)});
+  return rows;
+}
+
+nlohmann::json spaces_json(const core::CategoryModel& model) {
+  auto values = [](const Eigen::VectorXd& v) { return std::vector<double>(v.data(), v.data() + v.size()); };
+  nlohmann::json spaces = nlohmann::json::array();
+  for (const core::ShapeSpace& space : model.spaces)
+    spaces.push_back({{"name", space.name},
+                      {"points", space.point_count()},
+                      {"dimensions", space.dimensions()},
+                      {"beta", space.beta},
+                      {"variances", values(space.variances)},
+                      {"explained", values(space.explained_fraction())}});
+  return spaces;
+}
+
 }  // namespace partreg::app

@@ -1,9 +1,8 @@
 // `partreg cpd SOURCE TARGET`: Coherent Point Drift between two files (clouds, or meshes sampled to points).
-#include <nlohmann/json.hpp>
-
 #include <fstream>
 #include <iostream>
 #include <memory>
+#include <nlohmann/json.hpp>
 
 #include "partreg/commands/commands.hpp"
 #include "partreg/commands/common.hpp"
@@ -28,8 +27,8 @@ struct CpdOptions {
   bool exact = false;
 };
 
-nlohmann::json common_json(const CpdOptions& options, double sigma2, int iterations, core::CpdStopReason reason,
-                           double seconds) {
+nlohmann::json common_json(const CpdOptions& options, double sigma2, int iterations,
+                           core::CpdStopReason reason, double seconds) {
   return {{"mode", options.mode},
           {"source", options.source_path},
           {"target", options.target_path},
@@ -43,12 +42,6 @@ nlohmann::json common_json(const CpdOptions& options, double sigma2, int iterati
           {"sigma2", sigma2},
           {"stop_reason", core::to_string(reason)},
           {"seconds", seconds}};
-}
-
-nlohmann::json matrix_json(const Eigen::Matrix4d& matrix) {
-  nlohmann::json rows = nlohmann::json::array();
-  for (int r = 0; r < 4; ++r) rows.push_back({matrix(r, 0), matrix(r, 1), matrix(r, 2), matrix(r, 3)});
-  return rows;
 }
 
 struct Registered {
@@ -115,23 +108,34 @@ void run_cpd(const CpdOptions& options) {
 
 void add_cpd_command(CLI::App& app) {
   auto options = std::make_shared<CpdOptions>();
-  CLI::App* command = app.add_subcommand("cpd", "Coherent Point Drift from SOURCE onto TARGET (clouds or meshes)");
-  command->add_option("SOURCE", options->source_path, "cloud or mesh to move")->required()->check(CLI::ExistingFile);
-  command->add_option("TARGET", options->target_path, "cloud or mesh to reach")->required()->check(CLI::ExistingFile);
+  CLI::App* command =
+      app.add_subcommand("cpd", "Coherent Point Drift from SOURCE onto TARGET (clouds or meshes)");
+  command->add_option("SOURCE", options->source_path, "cloud or mesh to move")
+      ->required()
+      ->check(CLI::ExistingFile);
+  command->add_option("TARGET", options->target_path, "cloud or mesh to reach")
+      ->required()
+      ->check(CLI::ExistingFile);
   command->add_option("--mode", options->mode, "rigid | affine | nonrigid")->capture_default_str();
-  command->add_option("--out", options->out_path, "PLY file for the moved source points (target frame)")->required();
+  command->add_option("--out", options->out_path, "PLY file for the moved source points (target frame)")
+      ->required();
   command->add_option("--json", options->json_path, "write the result as JSON here ('-' for stdout)");
   command->add_option("--points", options->points, "points sampled from a mesh input")->capture_default_str();
   command->add_option("--seed", options->seed, "sampling seed")->capture_default_str();
-  command->add_option("--beta", options->nonrigid.beta, "kernel width, normalised units (target diagonal = 1)")
+  command
+      ->add_option("--beta", options->nonrigid.beta, "kernel width, normalised units (target diagonal = 1)")
       ->capture_default_str();
-  command->add_option("--lambda", options->nonrigid.lambda, "smoothness weight (unitless)")->capture_default_str();
-  command->add_option("--w", options->nonrigid.outlier_weight, "outlier weight in [0, 1)")->capture_default_str();
+  command->add_option("--lambda", options->nonrigid.lambda, "smoothness weight (unitless)")
+      ->capture_default_str();
+  command->add_option("--w", options->nonrigid.outlier_weight, "outlier weight in [0, 1)")
+      ->capture_default_str();
   command->add_option("--tolerance", options->nonrigid.tolerance, "relative change that stops the iterations")
       ->capture_default_str();
-  command->add_option("--max-iterations", options->nonrigid.max_iterations, "iteration cap")->capture_default_str();
+  command->add_option("--max-iterations", options->nonrigid.max_iterations, "iteration cap")
+      ->capture_default_str();
   command->add_flag("--scale", options->scale, "rigid mode: estimate a uniform scale too");
-  command->add_flag("--exact", options->exact, "nonrigid mode: the exact solver (full kernel, no truncation)");
+  command->add_flag("--exact", options->exact,
+                    "nonrigid mode: the exact solver (full kernel, no truncation)");
   command->callback([options] { run_cpd(*options); });
 }
 

@@ -10,16 +10,6 @@ namespace partreg::app {
 namespace {
 
 nlohmann::json describe(const core::CategoryModel& model) {
-  nlohmann::json spaces = nlohmann::json::array();
-  for (const core::ShapeSpace& space : model.spaces) {
-    const Eigen::VectorXd explained = space.explained_fraction();
-    spaces.push_back({{"name", space.name},
-                      {"points", space.point_count()},
-                      {"dimensions", space.dimensions()},
-                      {"beta", space.beta},
-                      {"variances", std::vector<double>(space.variances.data(), space.variances.data() + space.variances.size())},
-                      {"explained", std::vector<double>(explained.data(), explained.data() + explained.size())}});
-  }
   const auto& record = model.training;
   return {{"category", model.category},
           {"parts", model.part_names},
@@ -27,8 +17,9 @@ nlohmann::json describe(const core::CategoryModel& model) {
           {"mesh_vertices", model.canonical_mesh.vertices.rows()},
           {"mesh_faces", model.canonical_mesh.faces.rows()},
           {"scale", model.normalization.scale},
-          {"centre", {model.normalization.centre.x(), model.normalization.centre.y(), model.normalization.centre.z()}},
-          {"spaces", spaces},
+          {"centre",
+           {model.normalization.centre.x(), model.normalization.centre.y(), model.normalization.centre.z()}},
+          {"spaces", spaces_json(model)},
           {"training",
            {{"instances", record.instances},
             {"canonical", record.canonical},
@@ -57,8 +48,8 @@ void print(const nlohmann::json& info) {
   const auto& training = info["training"];
   std::cout << "trained on " << training["instances"].size() << " instances " << training["instances"].dump()
             << ", canonical " << training["canonical"].get<std::string>() << " ("
-            << training["canonical_choice"].get<std::string>() << "), beta " << training["beta"] << ", lambda "
-            << training["lambda"] << '\n';
+            << training["canonical_choice"].get<std::string>() << "), beta " << training["beta"]
+            << ", lambda " << training["lambda"] << '\n';
 }
 
 }  // namespace
@@ -66,7 +57,8 @@ void print(const nlohmann::json& info) {
 void add_info_command(CLI::App& app) {
   auto model_path = std::make_shared<std::string>();
   auto as_json = std::make_shared<bool>(false);
-  CLI::App* command = app.add_subcommand("info", "Describe a category model: parts, spaces, explained variance");
+  CLI::App* command =
+      app.add_subcommand("info", "Describe a category model: parts, spaces, explained variance");
   command->add_option("MODEL", *model_path, "model file")->required();
   command->add_flag("--json", *as_json, "print JSON instead of text");
   command->callback([model_path, as_json] {

@@ -1,12 +1,11 @@
 // `partreg label MESH --part NAME --box|--plane|--sphere ...`: assign mesh faces to a part without the GUI.
-#include <filesystem>
-#include <iostream>
+#include <Eigen/Geometry>
 #include <algorithm>
 #include <cmath>
+#include <filesystem>
+#include <iostream>
 #include <memory>
 #include <sstream>
-
-#include <Eigen/Geometry>
 
 #include "partreg/commands/commands.hpp"
 #include "partreg/core/errors.hpp"
@@ -32,8 +31,10 @@ core::PartSelector selector_of(const LabelOptions& options) {
 io::PartLabels starting_labels(const LabelOptions& options, const core::Mesh& mesh) {
   if (!options.in_path.empty()) {
     io::PartLabels labels = io::read_labels_file(options.in_path);
-    if (labels.target != io::PartLabels::Target::faces) throw InputError(options.in_path + " labels points, not mesh faces");
-    io::check_labels_match(labels, static_cast<std::size_t>(mesh.faces.rows()), "faces in " + options.mesh_path);
+    if (labels.target != io::PartLabels::Target::faces)
+      throw InputError(options.in_path + " labels points, not mesh faces");
+    io::check_labels_match(labels, static_cast<std::size_t>(mesh.faces.rows()),
+                           "faces in " + options.mesh_path);
     return labels;
   }
   io::PartLabels labels;
@@ -64,11 +65,13 @@ void run_label(const LabelOptions& options) {
   io::PartLabels labels = starting_labels(options, mesh);
   const std::vector<bool> selected = core::select_faces(mesh, selector);
   if (std::none_of(selected.begin(), selected.end(), [](bool s) { return s; })) {
-    const Eigen::RowVector3d low = mesh.vertices.colwise().minCoeff(), high = mesh.vertices.colwise().maxCoeff();
+    const Eigen::RowVector3d low = mesh.vertices.colwise().minCoeff(),
+                             high = mesh.vertices.colwise().maxCoeff();
     std::ostringstream bounds;
-    bounds << "x [" << low.x() << ", " << high.x() << "], y [" << low.y() << ", " << high.y() << "], z [" << low.z()
-           << ", " << high.z() << "]";
-    throw InputError("the selector selects no face of " + options.mesh_path + "; the mesh spans " + bounds.str());
+    bounds << "x [" << low.x() << ", " << high.x() << "], y [" << low.y() << ", " << high.y() << "], z ["
+           << low.z() << ", " << high.z() << "]";
+    throw InputError("the selector selects no face of " + options.mesh_path + "; the mesh spans " +
+                     bounds.str());
   }
   const int part = labels.part_index(options.part);
   for (std::size_t f = 0; f < selected.size(); ++f)
@@ -89,7 +92,8 @@ void add_label_command(CLI::App& app) {
   command->add_option("--plane", o->plane, "PX,PY,PZ,NX,NY,NZ: faces on the side the normal points to");
   command->add_option("--sphere", o->sphere, "CX,CY,CZ,R: faces within the ball");
   command->add_option("--in", o->in_path, "start from this labels file (same mesh)");
-  command->add_option("--rest", o->rest, "part of every face not yet labelled, when starting afresh")->capture_default_str();
+  command->add_option("--rest", o->rest, "part of every face not yet labelled, when starting afresh")
+      ->capture_default_str();
   command->add_option("--out", o->out_path, "labels file to write (JSON)")->required();
   command->callback([o] { run_label(*o); });
 }

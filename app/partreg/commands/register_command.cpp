@@ -33,22 +33,17 @@ Eigen::Vector3d parse_vector(const std::string& text, const std::string& option)
   return value;
 }
 
-nlohmann::json matrix_json(const Eigen::Matrix4d& matrix) {
-  nlohmann::json rows = nlohmann::json::array();
-  for (int r = 0; r < 4; ++r) rows.push_back({matrix(r, 0), matrix(r, 1), matrix(r, 2), matrix(r, 3)});
-  return rows;
-}
-
 nlohmann::json result_json(const core::RegistrationResult& result, const RegisterOptions& options) {
   nlohmann::json spaces = nlohmann::json::array();
   for (const core::SpaceFit& fit : result.fits)
-    spaces.push_back({{"space", fit.space},
-                      {"latent", std::vector<double>(fit.latent.data(), fit.latent.data() + fit.latent.size())},
-                      {"T_observed_canonical", matrix_json(fit.T_observed_canonical)},
-                      {"scale", fit.scale},
-                      {"cost", fit.cost},
-                      {"iterations", fit.iterations},
-                      {"seconds", fit.seconds}});
+    spaces.push_back(
+        {{"space", fit.space},
+         {"latent", std::vector<double>(fit.latent.data(), fit.latent.data() + fit.latent.size())},
+         {"T_observed_canonical", matrix_json(fit.T_observed_canonical)},
+         {"scale", fit.scale},
+         {"cost", fit.cost},
+         {"iterations", fit.iterations},
+         {"seconds", fit.seconds}});
   return {{"model", options.model_path},
           {"observed", options.observed_path},
           {"variant", core::to_string(result.variant)},
@@ -93,7 +88,8 @@ nlohmann::json truth_errors(const core::CategoryModel& model, const core::Regist
   const double eq5 = core::closest_point_error(result.deformed, truth);
   const double chamfer = core::chamfer_distance(result.deformed, truth);
   std::cerr << core::to_string(result.variant) << " against " << options.truth_path << ": Eq. 5 error " << eq5
-            << " (data units squared), " << eq5 / (diagonal * diagonal) << " normalised; Chamfer " << chamfer << '\n';
+            << " (data units squared), " << eq5 / (diagonal * diagonal) << " normalised; Chamfer " << chamfer
+            << '\n';
   return {{"file", options.truth_path},
           {"eq5", eq5},
           {"eq5_normalised", eq5 / (diagonal * diagonal)},
@@ -109,16 +105,17 @@ void run_register(RegisterOptions& options) {
   if (options.settings.restarts < 1) throw UsageError("--restarts must be at least 1");
   if (options.frames_out.empty() != options.frames_path.empty())
     throw UsageError("--frames and --frames-out go together");
-  if (!options.frames_path.empty()) io::read_frames_file(options.frames_path);  // refuse bad frames before working
+  if (!options.frames_path.empty())
+    io::read_frames_file(options.frames_path);  // refuse bad frames before working
   const core::CategoryModel model = io::read_model(options.model_path);
   const core::Points observed = read_points_logged(options.observed_path, options.mesh_samples, 1);
   const core::RegistrationResult result = core::register_observation(model, observed, options.settings);
   for (const core::SpaceFit& fit : result.fits)
-    std::cerr << "space " << fit.space << ": " << fit.iterations << " steps, cost " << fit.cost << ", " << fit.seconds
-              << " s\n";
-  std::cerr << core::to_string(result.variant) << ": mean closest-point distance " << result.fit.mean << " (data units), "
-            << result.fit.mean_normalised << " of the diagonal; 90th percentile " << result.fit.p90 << "; "
-            << result.seconds << " s\n";
+    std::cerr << "space " << fit.space << ": " << fit.iterations << " steps, cost " << fit.cost << ", "
+              << fit.seconds << " s\n";
+  std::cerr << core::to_string(result.variant) << ": mean closest-point distance " << result.fit.mean
+            << " (data units), " << result.fit.mean_normalised << " of the diagonal; 90th percentile "
+            << result.fit.p90 << "; " << result.seconds << " s\n";
   nlohmann::json report = result_json(result, options);
   if (!options.truth_path.empty()) report["truth"] = truth_errors(model, result, options);
   write_outputs(model, result, options);
@@ -129,22 +126,28 @@ void run_register(RegisterOptions& options) {
 
 void add_register_command(CLI::App& app) {
   auto o = std::make_shared<RegisterOptions>();
-  CLI::App* command = app.add_subcommand("register", "Deform a category model onto an observed cloud or mesh");
+  CLI::App* command =
+      app.add_subcommand("register", "Deform a category model onto an observed cloud or mesh");
   command->add_option("MODEL", o->model_path, "model file from partreg train")->required();
-  command->add_option("OBSERVED", o->observed_path, "observed cloud or mesh (data units and frame)")->required();
+  command->add_option("OBSERVED", o->observed_path, "observed cloud or mesh (data units and frame)")
+      ->required();
   command->add_option("--variant", o->variant, "holistic | partwise | hol+part")->capture_default_str();
   command->add_option("--json", o->json_path, "result JSON ('-' for stdout)");
   command->add_option("--points-out", o->points_out, "PLY of the deformed canonical points with their part");
   command->add_option("--mesh-out", o->mesh_out, "the deformed canonical mesh (.obj or .ply)");
   command->add_option("--frames", o->frames_path, "frames attached to the canonical (JSON)");
   command->add_option("--frames-out", o->frames_out, "where the transferred frames go");
-  command->add_option("--viewpoint", o->viewpoint, "X,Y,Z camera position: only canonical points facing it count");
-  command->add_option("--restarts", o->settings.restarts, "initial rotations about the up axis")->capture_default_str();
+  command->add_option("--viewpoint", o->viewpoint,
+                      "X,Y,Z camera position: only canonical points facing it count");
+  command->add_option("--restarts", o->settings.restarts, "initial rotations about the up axis")
+      ->capture_default_str();
   command->add_option("--direction", o->direction, "canonical | observed | symmetric")->capture_default_str();
   command->add_option("--loss", o->loss, "squared | huber | cauchy | trimmed")->capture_default_str();
   command->add_flag("--scale", o->settings.estimate_scale, "also fit a uniform scale");
-  command->add_option("--truth", o->truth_path, "ground-truth instance (cloud or mesh, observed frame): report Eq. 5 and Chamfer");
-  command->add_option("--samples", o->mesh_samples, "points sampled from an observed mesh")->capture_default_str();
+  command->add_option("--truth", o->truth_path,
+                      "ground-truth instance (cloud or mesh, observed frame): report Eq. 5 and Chamfer");
+  command->add_option("--samples", o->mesh_samples, "points sampled from an observed mesh")
+      ->capture_default_str();
   command->callback([o] { run_register(*o); });
 }
 

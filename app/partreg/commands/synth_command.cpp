@@ -1,10 +1,9 @@
 // `partreg synth CATEGORY --out DIR`: a synthetic category with parts and ground-truth correspondences.
-#include <nlohmann/json.hpp>
-
 #include <filesystem>
 #include <fstream>
 #include <iostream>
 #include <memory>
+#include <nlohmann/json.hpp>
 
 #include "partreg/commands/commands.hpp"
 #include "partreg/commands/common.hpp"
@@ -54,8 +53,8 @@ void run_synth(const SynthOptions& options) {
       for (const core::SyntheticPart& part : instance.parts)
         io::write_mesh(out / instance.name / (part.name + ".obj"), part.mesh);
       write_ground_truth(out / "ground_truth" / (instance.name + ".ply"),
-                         core::sample_correspondences(category, instance.shape_parameters, options.correspondences,
-                                                      options.seed));
+                         core::sample_correspondences(category, instance.shape_parameters,
+                                                      options.correspondences, options.seed));
       parameters[instance.name] = instance.shape_parameters;
       std::cerr << "wrote " << (out / instance.name).string() << " (" << instance.parts.size() << " parts)\n";
     }
@@ -74,14 +73,15 @@ void run_synth(const SynthOptions& options) {
 
 void add_synth_command(CLI::App& app) {
   auto options = std::make_shared<SynthOptions>();
-  CLI::App* command =
-      app.add_subcommand("synth", "Generate a synthetic category with parts and ground-truth correspondences");
+  CLI::App* command = app.add_subcommand(
+      "synth", "Generate a synthetic category with parts and ground-truth correspondences");
   command->add_option("CATEGORY", options->category, "mug | drill | spray_bottle")->required();
   command->add_option("--out", options->out_path, "new folder to write (part-folder layout)")->required();
   command->add_option("--instances", options->instances, "how many instances")->capture_default_str();
   command->add_option("--seed", options->seed, "random seed of the shape parameters")->capture_default_str();
-  command->add_option("--correspondences", options->correspondences,
-                      "ground-truth surface points per instance")->capture_default_str();
+  command
+      ->add_option("--correspondences", options->correspondences, "ground-truth surface points per instance")
+      ->capture_default_str();
   command->callback([options] { run_synth(*options); });
 }
 

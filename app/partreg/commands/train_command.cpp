@@ -27,17 +27,20 @@ struct TrainOptions {
 // A labels file made for one instance's mesh gives that instance (the canonical) its parts.
 void apply_labels(io::Dataset& dataset, TrainOptions& options) {
   if (dataset.part_folders)
-    throw UsageError("dataset " + options.dataset_path + " has part files already; --labels is for datasets without");
+    throw UsageError("dataset " + options.dataset_path +
+                     " has part files already; --labels is for datasets without");
   const io::PartLabels labels = io::read_labels_file(options.labels_path);
   const std::string instance =
       options.canonical.empty() ? std::filesystem::path(labels.source).stem().string() : options.canonical;
   if (labels.target == io::PartLabels::Target::faces) {
     io::apply_face_labels(dataset, instance, labels.names, labels.labels, options.dataset);
   } else {
-    auto found = std::find_if(dataset.instances.begin(), dataset.instances.end(),
-                              [&](const core::TrainingInstance& candidate) { return candidate.name == instance; });
+    auto found =
+        std::find_if(dataset.instances.begin(), dataset.instances.end(),
+                     [&](const core::TrainingInstance& candidate) { return candidate.name == instance; });
     if (found == dataset.instances.end())
-      throw InputError("labels file " + options.labels_path + " is for '" + instance + "', not in the dataset");
+      throw InputError("labels file " + options.labels_path + " is for '" + instance +
+                       "', not in the dataset");
     io::check_labels_match(labels, static_cast<std::size_t>(found->points.rows()), "points of " + instance);
     found->part = labels.labels;
     dataset.part_names = labels.names;
@@ -46,19 +49,11 @@ void apply_labels(io::Dataset& dataset, TrainOptions& options) {
 }
 
 nlohmann::json summary_json(const core::CategoryModel& model, const core::TrainingReport& report) {
-  nlohmann::json spaces = nlohmann::json::array();
-  for (const core::ShapeSpace& space : model.spaces) {
-    const Eigen::VectorXd explained = space.explained_fraction();
-    spaces.push_back({{"name", space.name},
-                      {"points", space.point_count()},
-                      {"dimensions", space.dimensions()},
-                      {"explained", std::vector<double>(explained.data(), explained.data() + explained.size())}});
-  }
   return {{"category", model.category},
           {"canonical", model.training.canonical},
           {"canonical_choice", report.canonical_choice},
           {"instances", model.training.instances},
-          {"spaces", spaces},
+          {"spaces", spaces_json(model)},
           {"label_agreement", report.label_agreement},
           {"seconds", report.seconds}};
 }
@@ -68,12 +63,14 @@ void print_summary(const core::CategoryModel& model, const core::TrainingReport&
   for (const core::ShapeSpace& space : model.spaces) {
     std::cerr << "space " << space.name << ": " << space.point_count() << " points, " << space.dimensions()
               << " dimensions, explained variance";
-    for (double fraction : space.explained_fraction()) std::cerr << ' ' << std::round(1000 * fraction) / 10 << '%';
+    for (double fraction : space.explained_fraction())
+      std::cerr << ' ' << std::round(1000 * fraction) / 10 << '%';
     std::cerr << '\n';
   }
   for (const auto& [instance, parts] : report.label_agreement) {
     std::cerr << "label propagation onto " << instance << ":";
-    for (const auto& [part, fraction] : parts) std::cerr << ' ' << part << ' ' << std::round(1000 * fraction) / 10 << '%';
+    for (const auto& [part, fraction] : parts)
+      std::cerr << ' ' << part << ' ' << std::round(1000 * fraction) / 10 << '%';
     std::cerr << '\n';
   }
   std::cerr << "trained in " << report.seconds << " s\n";
@@ -88,7 +85,8 @@ void run_train(TrainOptions& options) {
             << (dataset.part_names.empty() ? ", no parts" : "") << '\n';
   if (!options.labels_path.empty()) apply_labels(dataset, options);
   for (const core::TrainingInstance& instance : dataset.instances)
-    if (instance.points.rows() < options.settings.canonical_points && options.settings.canonical == instance.name)
+    if (instance.points.rows() < options.settings.canonical_points &&
+        options.settings.canonical == instance.name)
       std::cerr << "note: canonical '" << instance.name << "' has only " << instance.points.rows()
                 << " points: the model uses all of them\n";
 
@@ -106,18 +104,23 @@ void run_train(TrainOptions& options) {
 
 void add_train_command(CLI::App& app) {
   auto options = std::make_shared<TrainOptions>();
-  CLI::App* command = app.add_subcommand("train", "Learn a category model (shape spaces) from a dataset folder");
-  command->add_option("DATASET", options->dataset_path, "folder: one file per instance, or one folder of part meshes per instance")
+  CLI::App* command =
+      app.add_subcommand("train", "Learn a category model (shape spaces) from a dataset folder");
+  command
+      ->add_option("DATASET", options->dataset_path,
+                   "folder: one file per instance, or one folder of part meshes per instance")
       ->required();
   command->add_option("--out", options->out_path, "model file to write (.prm)")->required();
   command->add_option("--canonical", options->canonical, "instance to use as canonical (default: automatic)");
   command->add_option("--labels", options->labels_path, "labels file giving the canonical its parts");
   command->add_option("--latent", options->settings.latent_dimensions, "dimensions per shape space")
       ->capture_default_str();
-  command->add_option("--points", options->settings.canonical_points, "canonical points M")->capture_default_str();
+  command->add_option("--points", options->settings.canonical_points, "canonical points M")
+      ->capture_default_str();
   command->add_option("--samples", options->dataset.points_per_instance, "surface samples per mesh instance")
       ->capture_default_str();
-  command->add_option("--beta", options->settings.beta, "CPD kernel width (normalised length)")->capture_default_str();
+  command->add_option("--beta", options->settings.beta, "CPD kernel width (normalised length)")
+      ->capture_default_str();
   command->add_option("--lambda", options->settings.lambda, "CPD smoothness weight")->capture_default_str();
   command->add_option("--seed", options->dataset.seed, "sampling seed")->capture_default_str();
   command->add_option("--json", options->json_path, "write a training summary as JSON ('-' for stdout)");

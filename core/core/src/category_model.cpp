@@ -27,22 +27,27 @@ void CategoryModel::validate() const {
   if (!canonical.allFinite()) fail("canonical points are not finite");
   if (canonical_part.size() != m) fail("part labels do not match the canonical points");
   const int parts = static_cast<int>(part_names.size());
-  if (canonical_part.size() > 0 && (canonical_part.minCoeff() < 0 || canonical_part.maxCoeff() >= std::max(parts, 1)))
+  if (canonical_part.size() > 0 &&
+      (canonical_part.minCoeff() < 0 || canonical_part.maxCoeff() >= std::max(parts, 1)))
     fail("a canonical point has a part index out of range");
-  if (canonical_mesh.faces.size() > 0 &&
-      (canonical_mesh.faces.minCoeff() < 0 || canonical_mesh.faces.maxCoeff() >= canonical_mesh.vertices.rows()))
+  if (canonical_mesh.faces.size() > 0 && (canonical_mesh.faces.minCoeff() < 0 ||
+                                          canonical_mesh.faces.maxCoeff() >= canonical_mesh.vertices.rows()))
     fail("a mesh face refers to a vertex that does not exist");
-  if (mesh_vertex_part.size() != canonical_mesh.vertices.rows()) fail("mesh part labels do not match its vertices");
+  if (mesh_vertex_part.size() != canonical_mesh.vertices.rows())
+    fail("mesh part labels do not match its vertices");
   if (spaces.empty() || spaces.front().name != "holistic") fail("the first space must be the holistic one");
-  if (spaces.size() != static_cast<std::size_t>(parts) + 1) fail("there must be one space per part plus holistic");
+  if (spaces.size() != static_cast<std::size_t>(parts) + 1)
+    fail("there must be one space per part plus holistic");
   for (const ShapeSpace& space : spaces) {
     const Eigen::Index rows = space.canonical.rows();
     const Eigen::Index q = space.basis.cols();
-    if (static_cast<Eigen::Index>(space.point_indices.size()) != rows) fail("space " + space.name + ": bad indices");
+    if (static_cast<Eigen::Index>(space.point_indices.size()) != rows)
+      fail("space " + space.name + ": bad indices");
     for (int index : space.point_indices)
       if (index < 0 || index >= m) fail("space " + space.name + ": index out of range");
-    if (space.mean.size() != 3 * rows || space.basis.rows() != 3 * rows || space.kernel_mean.size() != 3 * rows ||
-        space.kernel_basis.rows() != 3 * rows || space.kernel_basis.cols() != q || space.variances.size() != q)
+    if (space.mean.size() != 3 * rows || space.basis.rows() != 3 * rows ||
+        space.kernel_mean.size() != 3 * rows || space.kernel_basis.rows() != 3 * rows ||
+        space.kernel_basis.cols() != q || space.variances.size() != q)
       fail("space " + space.name + ": array sizes do not agree");
     if (!(space.beta > 0.0)) fail("space " + space.name + ": beta must be positive");
   }

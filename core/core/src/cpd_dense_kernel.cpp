@@ -6,9 +6,9 @@
 
 namespace partreg::core::detail {
 
-double dense_posterior_sums(const float* sx, const float* sy, const float* sz, std::ptrdiff_t m, const double* target,
-                            std::ptrdiff_t begin, std::ptrdiff_t end, float scale, double c, float* work, float* p1,
-                            float* px, float* py, float* pz, double* pt1) {
+double dense_posterior_sums(const float* sx, const float* sy, const float* sz, std::ptrdiff_t m,
+                            const double* target, std::ptrdiff_t begin, std::ptrdiff_t end, float scale,
+                            double c, float* work, float* p1, float* px, float* py, float* pz, double* pt1) {
   using Array = Eigen::Map<Eigen::ArrayXf>;
   using ConstArray = Eigen::Map<const Eigen::ArrayXf>;
   const ConstArray mx(sx, m), my(sy, m), mz(sz, m);

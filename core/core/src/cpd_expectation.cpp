@@ -1,10 +1,9 @@
 #include "cpd_expectation.hpp"
 
-#include "cpd_dense_kernel.hpp"
-
 #include <cmath>
 #include <mutex>
 
+#include "cpd_dense_kernel.hpp"
 #include "partreg/core/errors.hpp"
 #include "partreg/core/kdtree.hpp"
 #include "partreg/core/normalization.hpp"
@@ -35,23 +34,24 @@ void merge(Expectation& total, const Partial& part, std::mutex& lock) {
 // separate coordinate arrays, so that distances, exp and sums are vectorised. The fast path computes in float
 // (twice the SIMD width; EM weights need no more) in a kernel of its own (cpd_dense_kernel.cpp); the exact
 // path in double here.
-void dense_range_fast(const Points& moved, const Points& target, Eigen::Index begin, Eigen::Index end, double sigma2,
-                      double c, Partial& partial, Expectation& out) {
+void dense_range_fast(const Points& moved, const Points& target, Eigen::Index begin, Eigen::Index end,
+                      double sigma2, double c, Partial& partial, Expectation& out) {
   const Eigen::Index m = moved.rows();
   std::vector<float> buffer(static_cast<std::size_t>(8 * m), 0.0f);  // x y z, work, p1 px py pz
   float* b = buffer.data();
   for (Eigen::Index i = 0; i < m; ++i)
     for (int d = 0; d < 3; ++d) b[d * m + i] = static_cast<float>(moved(i, d));
-  partial.nll -= dense_posterior_sums(b, b + m, b + 2 * m, m, target.data(), begin, end, static_cast<float>(-0.5 / sigma2),
-                                      c, b + 3 * m, b + 4 * m, b + 5 * m, b + 6 * m, b + 7 * m, out.Pt1.data());
+  partial.nll -= dense_posterior_sums(b, b + m, b + 2 * m, m, target.data(), begin, end,
+                                      static_cast<float>(-0.5 / sigma2), c, b + 3 * m, b + 4 * m, b + 5 * m,
+                                      b + 6 * m, b + 7 * m, out.Pt1.data());
   for (Eigen::Index i = 0; i < m; ++i) {
     partial.P1[i] += b[4 * m + i];
     for (int d = 0; d < 3; ++d) partial.PX(i, d) += b[(5 + d) * m + i];
   }
 }
 
-void dense_range_exact(const Points& moved, const Points& target, Eigen::Index begin, Eigen::Index end, double sigma2,
-                       double c, Partial& partial, Expectation& out) {
+void dense_range_exact(const Points& moved, const Points& target, Eigen::Index begin, Eigen::Index end,
+                       double sigma2, double c, Partial& partial, Expectation& out) {
   const Eigen::ArrayXd mx = moved.col(0), my = moved.col(1), mz = moved.col(2);
   Eigen::ArrayXd k(moved.rows());
   for (Eigen::Index n = begin; n < end; ++n) {
@@ -69,8 +69,8 @@ void dense_range_exact(const Points& moved, const Points& target, Eigen::Index b
 }
 
 // Truncated E-step: only source points within the radius where the kernel exceeds `truncation`.
-void truncated_range(const KdTree& tree, const Points& target, Eigen::Index begin, Eigen::Index end, double sigma2,
-                     double c, double radius, Partial& partial, Expectation& out) {
+void truncated_range(const KdTree& tree, const Points& target, Eigen::Index begin, Eigen::Index end,
+                     double sigma2, double c, double radius, Partial& partial, Expectation& out) {
   std::vector<std::pair<int, double>> neighbours;
   std::vector<double> kernel;
   for (Eigen::Index n = begin; n < end; ++n) {
@@ -99,8 +99,8 @@ double truncation_radius(double sigma2, double truncation) {
 
 }  // namespace
 
-Expectation expectation(const Points& moved, const Points& target, double sigma2, double outlier_weight, int threads,
-                        double truncation, bool precise) {
+Expectation expectation(const Points& moved, const Points& target, double sigma2, double outlier_weight,
+                        int threads, double truncation, bool precise) {
   const Eigen::Index m = moved.rows(), n = target.rows();
   Expectation out;
   out.P1 = Eigen::VectorXd::Zero(m);
@@ -113,18 +113,26 @@ Expectation expectation(const Points& moved, const Points& target, double sigma2
   if (truncation > 0.0) {
     const KdTree tree(moved);
     const double radius = truncation_radius(sigma2, truncation);
-    parallel_for(n, [&](Eigen::Index begin, Eigen::Index end) {
-      Partial partial(m);
-      truncated_range(tree, target, begin, end, sigma2, c, radius, partial, out);
-      merge(out, partial, lock);
-    }, threads);
+    parallel_for(
+        n,
+        [&](Eigen::Index begin, Eigen::Index end) {
+          Partial partial(m);
+          truncated_range(tree, target, begin, end, sigma2, c, radius, partial, out);
+          merge(out, partial, lock);
+        },
+        threads);
   } else {
-    parallel_for(n, [&](Eigen::Index begin, Eigen::Index end) {
-      Partial partial(m);
-      if (precise) dense_range_exact(moved, target, begin, end, sigma2, c, partial, out);
-      else dense_range_fast(moved, target, begin, end, sigma2, c, partial, out);
-      merge(out, partial, lock);
-    }, threads, 128);
+    parallel_for(
+        n,
+        [&](Eigen::Index begin, Eigen::Index end) {
+          Partial partial(m);
+          if (precise)
+            dense_range_exact(moved, target, begin, end, sigma2, c, partial, out);
+          else
+            dense_range_fast(moved, target, begin, end, sigma2, c, partial, out);
+          merge(out, partial, lock);
+        },
+        threads, 128);
   }
   out.Np = out.P1.sum();
   out.negative_log_likelihood += 1.5 * static_cast<double>(n) * std::log(sigma2);
@@ -145,8 +153,10 @@ bool use_truncation(const Points& moved, double sigma2, double truncation) {
 
 void check_cpd_points(const Points& points, const char* name) {
   if (points.rows() < 3)
-    throw InputError(std::string("CPD needs at least 3 ") + name + " points, got " + std::to_string(points.rows()));
-  if (!points.allFinite()) throw InputError(std::string("the ") + name + " points hold NaN or infinite values");
+    throw InputError(std::string("CPD needs at least 3 ") + name + " points, got " +
+                     std::to_string(points.rows()));
+  if (!points.allFinite())
+    throw InputError(std::string("the ") + name + " points hold NaN or infinite values");
 }
 
 void check_cpd_common(double outlier_weight, double tolerance, int max_iterations) {
@@ -175,8 +185,8 @@ EmOutcome run_em(const Points& target, Points& moved, const EmControl& control,
   double previous = std::numeric_limits<double>::infinity();
   for (int iteration = 1; iteration <= control.max_iterations; ++iteration) {
     const double truncation = use_truncation(moved, sigma2, control.truncation) ? control.truncation : 0.0;
-    const Expectation e =
-        expectation(moved, target, sigma2, control.outlier_weight, control.threads, truncation, control.precise);
+    const Expectation e = expectation(moved, target, sigma2, control.outlier_weight, control.threads,
+                                      truncation, control.precise);
     outcome.iterations = iteration;
     if (!(e.Np > 1e-12)) {  // every target point explained as an outlier: nothing left to fit
       outcome.stop_reason = CpdStopReason::degenerate;
@@ -202,7 +212,8 @@ EmOutcome run_em(const Points& target, Points& moved, const EmControl& control,
 }
 
 std::int64_t now_nanoseconds() {
-  return std::chrono::duration_cast<std::chrono::nanoseconds>(std::chrono::steady_clock::now().time_since_epoch())
+  return std::chrono::duration_cast<std::chrono::nanoseconds>(
+             std::chrono::steady_clock::now().time_since_epoch())
       .count();
 }
 

@@ -8,10 +8,10 @@ namespace partreg::core::detail {
 
 /// Sufficient statistics of the posterior P (M x N, P_mn = p(source m | target n)).
 struct Expectation {
-  Eigen::VectorXd P1;   ///< P 1: posterior mass per source point (M)
-  Eigen::VectorXd Pt1;  ///< P^T 1: posterior mass per target point (N)
-  Points PX;            ///< P X: posterior-weighted target per source point (M x 3)
-  double Np = 0.0;      ///< total mass, 1^T P 1
+  Eigen::VectorXd P1;                    ///< P 1: posterior mass per source point (M)
+  Eigen::VectorXd Pt1;                   ///< P^T 1: posterior mass per target point (N)
+  Points PX;                             ///< P X: posterior-weighted target per source point (M x 3)
+  double Np = 0.0;                       ///< total mass, 1^T P 1
   double negative_log_likelihood = 0.0;  ///< up to a constant; its relative change stops EM
 };
 

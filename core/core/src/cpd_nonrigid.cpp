@@ -16,9 +16,9 @@ namespace {
 // no M x M matrix is formed. The landmark weights W_L = V_k Lambda_k^(-1/2) Z turn a low-rank displacement
 // U Z back into an exact kernel field G(Y, L) W_L, so the result keeps the paper's form Y + G W.
 struct LowRankKernel {
-  std::vector<int> landmarks;    ///< rows of the source used as kernel centres
-  Eigen::MatrixXd factor;        ///< U (M x k)
-  Eigen::MatrixXd to_weights;    ///< V_k Lambda_k^(-1/2) (L x k): landmark weights of a unit column of Z
+  std::vector<int> landmarks;  ///< rows of the source used as kernel centres
+  Eigen::MatrixXd factor;      ///< U (M x k)
+  Eigen::MatrixXd to_weights;  ///< V_k Lambda_k^(-1/2) (L x k): landmark weights of a unit column of Z
 };
 
 LowRankKernel low_rank_kernel(const Points& source, double beta, int kernel_rank) {
@@ -79,8 +79,10 @@ NonrigidCpdResult register_nonrigid(const Points& source_in, const Points& targe
 
   Eigen::MatrixXd kernel;  // exact solver: G (M x M)
   LowRankKernel low_rank;  // fast solver: G ~ U U^T
-  if (fast) low_rank = low_rank_kernel(source, settings.beta, settings.kernel_rank);
-  else kernel = gaussian_kernel(source, source, settings.beta);
+  if (fast)
+    low_rank = low_rank_kernel(source, settings.beta, settings.kernel_rank);
+  else
+    kernel = gaussian_kernel(source, source, settings.beta);
   Eigen::MatrixXd latent;  // fast solver: Z (k x 3), the displacement is U Z
 
   Points weights = Points::Zero(m, 3);
@@ -92,25 +94,27 @@ NonrigidCpdResult register_nonrigid(const Points& source_in, const Points& targe
   control.threads = settings.threads;
   control.truncation = fast ? settings.truncation : 0.0;
   control.precise = !fast;
-  const auto outcome = detail::run_em(target, moved, control, [&](const detail::Expectation& e, double sigma2) {
-    const double regulariser = settings.lambda * sigma2;
-    const Points rhs = e.PX - e.P1.asDiagonal() * source;  // (G + lambda sigma2 d(P1)^-1) W = d(P1)^-1 PX - Y
-    if (fast) {
-      // With G = U U^T only Z = U^T W moves the points: (lambda sigma2 I + U^T d(P1) U) Z = U^T rhs
-      // (Woodbury, solved for Z). It stays well conditioned as sigma2 shrinks, unlike W itself.
-      const Eigen::MatrixXd& U = low_rank.factor;
-      Eigen::MatrixXd system = U.transpose() * e.P1.asDiagonal() * U;
-      system.diagonal().array() += regulariser;
-      latent = system.ldlt().solve(U.transpose() * rhs);
-      moved = source + U * latent;
-    } else {
-      Eigen::MatrixXd system = e.P1.asDiagonal() * kernel;
-      system.diagonal().array() += regulariser;
-      weights = system.partialPivLu().solve(rhs);
-      moved = source + kernel * weights;
-    }
-    return variance(e, target, moved);
-  });
+  const auto outcome =
+      detail::run_em(target, moved, control, [&](const detail::Expectation& e, double sigma2) {
+        const double regulariser = settings.lambda * sigma2;
+        const Points rhs =
+            e.PX - e.P1.asDiagonal() * source;  // (G + lambda sigma2 d(P1)^-1) W = d(P1)^-1 PX - Y
+        if (fast) {
+          // With G = U U^T only Z = U^T W moves the points: (lambda sigma2 I + U^T d(P1) U) Z = U^T rhs
+          // (Woodbury, solved for Z). It stays well conditioned as sigma2 shrinks, unlike W itself.
+          const Eigen::MatrixXd& U = low_rank.factor;
+          Eigen::MatrixXd system = U.transpose() * e.P1.asDiagonal() * U;
+          system.diagonal().array() += regulariser;
+          latent = system.ldlt().solve(U.transpose() * rhs);
+          moved = source + U * latent;
+        } else {
+          Eigen::MatrixXd system = e.P1.asDiagonal() * kernel;
+          system.diagonal().array() += regulariser;
+          weights = system.partialPivLu().solve(rhs);
+          moved = source + kernel * weights;
+        }
+        return variance(e, target, moved);
+      });
   // The fast solver's field is exactly G(Y, L) W_L: W is zero outside the landmark rows. The moved points
   // are recomputed from W so that apply(source) reproduces them whatever solver found it.
   if (fast && latent.size() > 0) {

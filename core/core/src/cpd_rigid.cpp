@@ -45,13 +45,41 @@ Normalization working_frame(const Points& target, bool normalize) {
   return normalize ? Normalization::fit(target) : Normalization{};
 }
 
+// Shared by rigid and affine CPD: validate, move both sets into the working frame, run EM with `m_step`
+// (which updates `moved` and returns sigma2), and fill the result's common fields in the caller's frame.
+// Returns the working frame so the caller can map its transform back.
+template <typename Settings, typename Result, typename MStep>
+Normalization run_linear_cpd(const Points& source_in, const Points& target_in, const Settings& settings,
+                             Result& result, MStep m_step) {
+  const auto start = detail::now_nanoseconds();
+  detail::check_cpd_points(source_in, "source");
+  detail::check_cpd_points(target_in, "target");
+  detail::check_cpd_common(settings.outlier_weight, settings.tolerance, settings.max_iterations);
+  const Normalization frame = working_frame(target_in, settings.normalize);
+  const Points source = frame.apply(source_in), target = frame.apply(target_in);
+  Points moved = source;
+  const auto outcome = detail::run_em(
+      target, moved,
+      control_of(settings.outlier_weight, settings.tolerance, settings.max_iterations, settings.threads),
+      [&](const detail::Expectation& e, double) { return m_step(e, source, target, moved); });
+  result.moved = frame.undo(moved);
+  result.sigma2 = outcome.sigma2;
+  result.iterations = outcome.iterations;
+  result.stop_reason = outcome.stop_reason;
+  result.seconds = detail::seconds_since(start);
+  return frame;
+}
+
 }  // namespace
 
 const char* to_string(CpdStopReason reason) {
   switch (reason) {
-    case CpdStopReason::converged: return "converged";
-    case CpdStopReason::max_iterations: return "max_iterations";
-    case CpdStopReason::degenerate: return "degenerate";
+    case CpdStopReason::converged:
+      return "converged";
+    case CpdStopReason::max_iterations:
+      return "max_iterations";
+    case CpdStopReason::degenerate:
+      return "degenerate";
   }
   return "unknown";
 }
@@ -63,19 +91,12 @@ Eigen::Matrix4d RigidCpdResult::T_target_source() const {
   return transform;
 }
 
-RigidCpdResult register_rigid(const Points& source_in, const Points& target_in, const RigidCpdSettings& settings) {
-  const auto start = detail::now_nanoseconds();
-  detail::check_cpd_points(source_in, "source");
-  detail::check_cpd_points(target_in, "target");
-  detail::check_cpd_common(settings.outlier_weight, settings.tolerance, settings.max_iterations);
-  const Normalization frame = working_frame(target_in, settings.normalize);
-  const Points source = frame.apply(source_in), target = frame.apply(target_in);
-
+RigidCpdResult register_rigid(const Points& source_in, const Points& target_in,
+                              const RigidCpdSettings& settings) {
   RigidCpdResult result;
-  Points moved = source;
-  const auto outcome = detail::run_em(
-      target, moved, control_of(settings.outlier_weight, settings.tolerance, settings.max_iterations, settings.threads),
-      [&](const detail::Expectation& e, double) {
+  const Normalization frame = run_linear_cpd(
+      source_in, target_in, settings, result,
+      [&](const detail::Expectation& e, const Points& source, const Points& target, Points& moved) {
         const Moments m = moments(e, source, target);
         const Eigen::JacobiSVD<Eigen::Matrix3d> svd(m.cross, Eigen::ComputeFullU | Eigen::ComputeFullV);
         Eigen::Vector3d reflection_guard(1.0, 1.0, (svd.matrixU() * svd.matrixV().transpose()).determinant());
@@ -83,34 +104,24 @@ RigidCpdResult register_rigid(const Points& source_in, const Points& target_in, 
         const double trace = (m.cross.transpose() * result.rotation).trace();
         result.scale = settings.estimate_scale ? trace / m.source_spread : 1.0;
         result.translation = m.mu_target - result.scale * result.rotation * m.mu_source;
-        moved = ((result.scale * source * result.rotation.transpose()).rowwise() + result.translation.transpose());
-        const double explained = settings.estimate_scale ? result.scale * trace
-                                                         : 2.0 * trace - m.source_spread;
+        moved = ((result.scale * source * result.rotation.transpose()).rowwise() +
+                 result.translation.transpose());
+        const double explained =
+            settings.estimate_scale ? result.scale * trace : 2.0 * trace - m.source_spread;
         return std::abs(m.target_spread - explained) / (3.0 * e.Np);
       });
   // Back to the caller's frame: x = k x' + c with x' = s R y' + t' and y' = (y - c) / k.
-  result.translation = frame.scale * result.translation + frame.centre - result.scale * result.rotation * frame.centre;
-  result.moved = frame.undo(moved);
-  result.sigma2 = outcome.sigma2;
-  result.iterations = outcome.iterations;
-  result.stop_reason = outcome.stop_reason;
-  result.seconds = detail::seconds_since(start);
+  result.translation =
+      frame.scale * result.translation + frame.centre - result.scale * result.rotation * frame.centre;
   return result;
 }
 
-AffineCpdResult register_affine(const Points& source_in, const Points& target_in, const AffineCpdSettings& settings) {
-  const auto start = detail::now_nanoseconds();
-  detail::check_cpd_points(source_in, "source");
-  detail::check_cpd_points(target_in, "target");
-  detail::check_cpd_common(settings.outlier_weight, settings.tolerance, settings.max_iterations);
-  const Normalization frame = working_frame(target_in, settings.normalize);
-  const Points source = frame.apply(source_in), target = frame.apply(target_in);
-
+AffineCpdResult register_affine(const Points& source_in, const Points& target_in,
+                                const AffineCpdSettings& settings) {
   AffineCpdResult result;
-  Points moved = source;
-  const auto outcome = detail::run_em(
-      target, moved, control_of(settings.outlier_weight, settings.tolerance, settings.max_iterations, settings.threads),
-      [&](const detail::Expectation& e, double) {
+  const Normalization frame = run_linear_cpd(
+      source_in, target_in, settings, result,
+      [&](const detail::Expectation& e, const Points& source, const Points& target, Points& moved) {
         const Moments m = moments(e, source, target);
         result.linear = m.cross * m.source_outer.inverse();
         result.translation = m.mu_target - result.linear * m.mu_source;
@@ -118,11 +129,6 @@ AffineCpdResult register_affine(const Points& source_in, const Points& target_in
         return std::abs(m.target_spread - (m.cross * result.linear.transpose()).trace()) / (3.0 * e.Np);
       });
   result.translation = frame.scale * result.translation + frame.centre - result.linear * frame.centre;
-  result.moved = frame.undo(moved);
-  result.sigma2 = outcome.sigma2;
-  result.iterations = outcome.iterations;
-  result.stop_reason = outcome.stop_reason;
-  result.seconds = detail::seconds_since(start);
   return result;
 }
 

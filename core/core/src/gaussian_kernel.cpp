@@ -30,7 +30,8 @@ Eigen::MatrixXd gaussian_kernel(const Points& a, const Points& b, double beta) {
 Eigen::MatrixXd apply_kernel(const Points& queries, const Points& centres,
                              const Eigen::Ref<const Eigen::MatrixXd>& weights, double beta) {
   check_beta(beta);
-  if (weights.rows() != centres.rows()) throw UsageError("apply_kernel: one weight row per centre is required");
+  if (weights.rows() != centres.rows())
+    throw UsageError("apply_kernel: one weight row per centre is required");
   Eigen::MatrixXd result(queries.rows(), weights.cols());
   constexpr Eigen::Index kBlock = 256;
   const Eigen::Index blocks = (queries.rows() + kBlock - 1) / kBlock;

@@ -21,8 +21,8 @@ struct PointsAdaptor {
   }
 };
 
-using Tree = nanoflann::KDTreeSingleIndexAdaptor<nanoflann::L2_Simple_Adaptor<double, PointsAdaptor>, PointsAdaptor,
-                                                 3, int>;
+using Tree = nanoflann::KDTreeSingleIndexAdaptor<nanoflann::L2_Simple_Adaptor<double, PointsAdaptor>,
+                                                 PointsAdaptor, 3, int>;
 
 }  // namespace
 
@@ -63,7 +63,8 @@ std::pair<int, double> KdTree::nearest(const Eigen::Vector3d& query) const {
   return {index, squared};
 }
 
-void KdTree::nearest_all(const Points& queries, std::vector<int>& index, Eigen::VectorXd& squared_distance) const {
+void KdTree::nearest_all(const Points& queries, std::vector<int>& index,
+                         Eigen::VectorXd& squared_distance) const {
   index.resize(static_cast<std::size_t>(queries.rows()));
   squared_distance.resize(queries.rows());
   parallel_for(queries.rows(), [&](Eigen::Index begin, Eigen::Index end) {

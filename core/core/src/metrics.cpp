@@ -17,7 +17,9 @@ Eigen::VectorXd squared_to_closest(const Points& from, const Points& to) {
 
 }  // namespace
 
-double closest_point_error(const Points& deformed, const Points& truth) { return squared_to_closest(deformed, truth).mean(); }
+double closest_point_error(const Points& deformed, const Points& truth) {
+  return squared_to_closest(deformed, truth).mean();
+}
 
 double chamfer_distance(const Points& a, const Points& b) {
   return 0.5 * (squared_to_closest(a, b).cwiseSqrt().mean() + squared_to_closest(b, a).cwiseSqrt().mean());

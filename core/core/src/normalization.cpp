@@ -17,7 +17,8 @@ Normalization Normalization::fit(const Points& reference) {
   const Eigen::RowVector3d upper = reference.colwise().maxCoeff();
   normalization.centre = (0.5 * (lower + upper)).transpose();
   normalization.scale = (upper - lower).norm();
-  if (!(normalization.scale > 0.0)) throw InputError("cannot normalise a point set whose points all coincide");
+  if (!(normalization.scale > 0.0))
+    throw InputError("cannot normalise a point set whose points all coincide");
   return normalization;
 }
 

@@ -9,11 +9,12 @@ namespace partreg::core {
 
 int default_thread_count() { return std::max(1u, std::thread::hardware_concurrency()); }
 
-void parallel_for(Eigen::Index count, const std::function<void(Eigen::Index, Eigen::Index)>& body, int threads,
-                  Eigen::Index minimum_chunk) {
+void parallel_for(Eigen::Index count, const std::function<void(Eigen::Index, Eigen::Index)>& body,
+                  int threads, Eigen::Index minimum_chunk) {
   if (count <= 0) return;
   const Eigen::Index wanted = threads > 0 ? threads : default_thread_count();
-  const Eigen::Index workers = std::max<Eigen::Index>(1, std::min(wanted, count / std::max<Eigen::Index>(1, minimum_chunk)));
+  const Eigen::Index workers =
+      std::max<Eigen::Index>(1, std::min(wanted, count / std::max<Eigen::Index>(1, minimum_chunk)));
   if (workers == 1) {
     body(0, count);
     return;

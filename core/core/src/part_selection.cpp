@@ -17,14 +17,16 @@ std::vector<double> numbers(const std::string& text, std::size_t count, const st
     if (item.empty() || *end != '\0') throw UsageError(what + ": '" + item + "' is not a number");
   }
   if (values.size() != count)
-    throw UsageError(what + " takes " + std::to_string(count) + " comma-separated numbers, got " + std::to_string(values.size()));
+    throw UsageError(what + " takes " + std::to_string(count) + " comma-separated numbers, got " +
+                     std::to_string(values.size()));
   return values;
 }
 
 bool contains(const PartSelector& selector, const Eigen::Vector3d& p) {
   if (const auto* box = std::get_if<BoxSelector>(&selector))
     return (p.array() >= box->min.array()).all() && (p.array() <= box->max.array()).all();
-  if (const auto* plane = std::get_if<PlaneSelector>(&selector)) return (p - plane->point).dot(plane->normal) >= 0.0;
+  if (const auto* plane = std::get_if<PlaneSelector>(&selector))
+    return (p - plane->point).dot(plane->normal) >= 0.0;
   const auto& sphere = std::get<SphereSelector>(selector);
   return (p - sphere.centre).norm() <= sphere.radius;
 }
@@ -52,15 +54,19 @@ PartSelector parse_sphere(const std::string& text) {
 
 std::vector<bool> select_points(const Points& points, const PartSelector& selector) {
   std::vector<bool> selected(static_cast<std::size_t>(points.rows()));
-  for (Eigen::Index i = 0; i < points.rows(); ++i) selected[static_cast<std::size_t>(i)] = contains(selector, points.row(i).transpose());
+  for (Eigen::Index i = 0; i < points.rows(); ++i)
+    selected[static_cast<std::size_t>(i)] = contains(selector, points.row(i).transpose());
   return selected;
 }
 
 std::vector<bool> select_faces(const Mesh& mesh, const PartSelector& selector) {
   std::vector<bool> selected(static_cast<std::size_t>(mesh.faces.rows()));
   for (Eigen::Index f = 0; f < mesh.faces.rows(); ++f) {
-    const Eigen::Vector3d centroid = (mesh.vertices.row(mesh.faces(f, 0)) + mesh.vertices.row(mesh.faces(f, 1)) +
-                                      mesh.vertices.row(mesh.faces(f, 2))).transpose() / 3.0;
+    const Eigen::Vector3d centroid =
+        (mesh.vertices.row(mesh.faces(f, 0)) + mesh.vertices.row(mesh.faces(f, 1)) +
+         mesh.vertices.row(mesh.faces(f, 2)))
+            .transpose() /
+        3.0;
     selected[static_cast<std::size_t>(f)] = contains(selector, centroid);
   }
   return selected;

@@ -21,19 +21,22 @@ using detail::SpaceSolution;
 detail::Observation prepare_observation(const CategoryModel& model, const Points& observed,
                                         const RegistrationSettings& settings, Eigen::Vector3d& centroid) {
   if (observed.rows() < 10)
-    throw InputError("the observed cloud has " + std::to_string(observed.rows()) + " points; at least 10 are needed");
+    throw InputError("the observed cloud has " + std::to_string(observed.rows()) +
+                     " points; at least 10 are needed");
   if (!observed.allFinite()) throw InputError("the observed cloud holds NaN or infinite points");
   const double ratio = bounding_box_diagonal(observed) / model.normalization.scale;
   if (!(ratio > 0.02 && ratio < 50.0))
-    throw InputError("the observed cloud is " + std::to_string(ratio) + " times the size of the '" + model.category +
-                     "' model: check its units");
+    throw InputError("the observed cloud is " + std::to_string(ratio) + " times the size of the '" +
+                     model.category + "' model: check its units");
   centroid = observed.colwise().mean().transpose();
   Observation observation;
   const Points normalised = (observed.rowwise() - centroid.transpose()) / model.normalization.scale;
   const auto count = std::min<Eigen::Index>(settings.observed_points, normalised.rows());
-  observation.points = select_rows(normalised, farthest_point_indices(normalised, static_cast<std::size_t>(count)));
+  observation.points =
+      select_rows(normalised, farthest_point_indices(normalised, static_cast<std::size_t>(count)));
   observation.tree = std::make_unique<KdTree>(observation.points);
-  if (settings.viewpoint) observation.viewpoint = (*settings.viewpoint - centroid) / model.normalization.scale;
+  if (settings.viewpoint)
+    observation.viewpoint = (*settings.viewpoint - centroid) / model.normalization.scale;
   return observation;
 }
 
@@ -50,7 +53,8 @@ Points canonical_normals(const Points& points) {
     Eigen::Vector3d mean = Eigen::Vector3d::Zero();
     for (const auto& [j, d2] : near) mean += points.row(j).transpose();
     mean /= static_cast<double>(std::max<std::size_t>(near.size(), 1));
-    for (const auto& [j, d2] : near) covariance += (points.row(j).transpose() - mean) * (points.row(j) - mean.transpose());
+    for (const auto& [j, d2] : near)
+      covariance += (points.row(j).transpose() - mean) * (points.row(j) - mean.transpose());
     Eigen::Vector3d normal = Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d>(covariance).eigenvectors().col(0);
     if (normal.dot((points.row(m) - centre).transpose()) < 0.0) normal = -normal;
     normals.row(m) = normal.transpose();
@@ -60,12 +64,16 @@ Points canonical_normals(const Points& points) {
 
 // Initial poses: the category's frame turned about its up axis, centroids aligned.
 std::vector<Pose> initial_poses(const CategoryModel& model, const RegistrationSettings& settings) {
-  const Eigen::Vector3d canonical_centre = model.holistic().deformed(Eigen::VectorXd::Zero(model.holistic().dimensions()))
-                                              .colwise().mean().transpose();
+  const Eigen::Vector3d canonical_centre = model.holistic()
+                                               .deformed(Eigen::VectorXd::Zero(model.holistic().dimensions()))
+                                               .colwise()
+                                               .mean()
+                                               .transpose();
   std::vector<Pose> poses;
   for (int k = 0; k < std::max(1, settings.restarts); ++k) {
     Pose pose;
-    pose.rotation = Eigen::AngleAxisd(2.0 * M_PI * k / std::max(1, settings.restarts), settings.up.normalized());
+    pose.rotation =
+        Eigen::AngleAxisd(2.0 * M_PI * k / std::max(1, settings.restarts), settings.up.normalized());
     pose.translation = -(pose.rotation * canonical_centre);
     poses.push_back(pose);
   }
@@ -73,7 +81,8 @@ std::vector<Pose> initial_poses(const CategoryModel& model, const RegistrationSe
 }
 
 SpaceSolution best_of(const ShapeSpace& space, const Points& normals, const Observation& observation,
-                      const std::vector<Pose>& poses, const Eigen::VectorXd& latent, const RegistrationSettings& settings) {
+                      const std::vector<Pose>& poses, const Eigen::VectorXd& latent,
+                      const RegistrationSettings& settings) {
   SpaceSolution best;
   best.cost = std::numeric_limits<double>::infinity();
   for (const Pose& pose : poses) {
@@ -94,11 +103,17 @@ Eigen::Matrix4d to_data_frame(const Pose& pose, const CategoryModel& model, cons
 
 void record(RegistrationResult& result, const std::string& name, const SpaceSolution& solution,
             const CategoryModel& model, const Eigen::Vector3d& centroid) {
-  SpaceFit fit{name, solution.latent, to_data_frame(solution.pose, model, centroid), solution.pose.scale,
-               solution.cost, solution.iterations, solution.seconds};
+  SpaceFit fit{name,
+               solution.latent,
+               to_data_frame(solution.pose, model, centroid),
+               solution.pose.scale,
+               solution.cost,
+               solution.iterations,
+               solution.seconds};
   result.fits.push_back(fit);
   for (std::size_t i = 0; i < solution.steps.size(); ++i)
-    result.history.push_back({name, solution.steps[i].first, to_data_frame(solution.steps[i].second, model, centroid),
+    result.history.push_back({name, solution.steps[i].first,
+                              to_data_frame(solution.steps[i].second, model, centroid),
                               solution.step_costs[i], solution.step_seconds[i]});
 }
 
@@ -152,9 +167,12 @@ Variant parse_variant(const std::string& name) {
 
 std::string to_string(Variant variant) {
   switch (variant) {
-    case Variant::holistic: return "holistic";
-    case Variant::partwise: return "partwise";
-    case Variant::hol_part: return "hol+part";
+    case Variant::holistic:
+      return "holistic";
+    case Variant::partwise:
+      return "partwise";
+    case Variant::hol_part:
+      return "hol+part";
   }
   return "unknown";
 }
@@ -190,14 +208,16 @@ RegistrationResult register_observation(const CategoryModel& model, const Points
   const ShapeSpace& holistic = model.holistic();
   SpaceSolution whole;
   if (settings.variant != Variant::partwise) {
-    whole = best_of(holistic, normals, observation, poses, Eigen::VectorXd::Zero(holistic.dimensions()), settings);
+    whole = best_of(holistic, normals, observation, poses, Eigen::VectorXd::Zero(holistic.dimensions()),
+                    settings);
     record(result, holistic.name, whole, model, centroid);
     deformed_normalised = whole.pose.apply(holistic.deformed(whole.latent));
   }
   if (settings.variant != Variant::holistic) {
     // Parts are independent given their initialisation: solve them in parallel.
-    const Points holistic_displacement =
-        settings.variant == Variant::hol_part ? Points(holistic.deformed(whole.latent) - holistic.canonical) : Points();
+    const Points holistic_displacement = settings.variant == Variant::hol_part
+                                             ? Points(holistic.deformed(whole.latent) - holistic.canonical)
+                                             : Points();
     // Summing over observed points needs the observation split by part: hol+part takes the split from the
     // holistic fit; partwise has none, so its parts use the canonical direction only (Eq. 3).
     std::vector<Observation> part_observations(model.spaces.size());
@@ -212,11 +232,13 @@ RegistrationResult register_observation(const CategoryModel& model, const Points
         const ShapeSpace& space = model.spaces[p];
         const Points part_normals = normals.rows() ? rows_of(normals, space.point_indices) : Points();
         if (settings.variant == Variant::partwise)
-          return best_of(space, part_normals, observation, poses, Eigen::VectorXd::Zero(space.dimensions()), part_settings);
+          return best_of(space, part_normals, observation, poses, Eigen::VectorXd::Zero(space.dimensions()),
+                         part_settings);
         const Observation& own = part_observations[p].tree ? part_observations[p] : observation;
         RegistrationSettings own_settings = settings;
         if (!part_observations[p].tree) own_settings.direction = Direction::canonical_to_observed;
-        const Eigen::VectorXd latent = space.project_displacement(rows_of(holistic_displacement, space.point_indices));
+        const Eigen::VectorXd latent =
+            space.project_displacement(rows_of(holistic_displacement, space.point_indices));
         return detail::solve_space(space, part_normals, own, latent, whole.pose, own_settings);
       }));
     }

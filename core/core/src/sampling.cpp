@@ -61,7 +61,8 @@ std::vector<int> farthest_point_indices(const Points& points, std::size_t count,
 
 Points select_rows(const Points& points, const std::vector<int>& rows) {
   Points selected(static_cast<Eigen::Index>(rows.size()), 3);
-  for (std::size_t i = 0; i < rows.size(); ++i) selected.row(static_cast<Eigen::Index>(i)) = points.row(rows[i]);
+  for (std::size_t i = 0; i < rows.size(); ++i)
+    selected.row(static_cast<Eigen::Index>(i)) = points.row(rows[i]);
   return selected;
 }
 

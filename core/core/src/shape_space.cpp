@@ -35,7 +35,8 @@ double subspace_distance(const Eigen::MatrixXd& a, const Eigen::MatrixXd& b) {
 Eigen::MatrixXd kernel_times_fields(const Points& canonical, const Eigen::MatrixXd& fields, double beta) {
   const Eigen::Index m = canonical.rows(), k = fields.cols();
   Eigen::MatrixXd stacked(m, 3 * k);
-  for (Eigen::Index i = 0; i < k; ++i) stacked.middleCols(3 * i, 3) = as_points(Eigen::VectorXd(fields.col(i)));
+  for (Eigen::Index i = 0; i < k; ++i)
+    stacked.middleCols(3 * i, 3) = as_points(Eigen::VectorXd(fields.col(i)));
   const Eigen::MatrixXd moved = apply_kernel(canonical, canonical, stacked, beta);
   Eigen::MatrixXd out(3 * m, k);
   for (Eigen::Index i = 0; i < k; ++i) {
@@ -48,7 +49,8 @@ Eigen::MatrixXd kernel_times_fields(const Points& canonical, const Eigen::Matrix
 
 }  // namespace
 
-Eigen::MatrixXd pca_em(const Eigen::MatrixXd& centred, const PcaEmSettings& settings, Eigen::VectorXd& variances) {
+Eigen::MatrixXd pca_em(const Eigen::MatrixXd& centred, const PcaEmSettings& settings,
+                       Eigen::VectorXd& variances) {
   const Eigen::Index samples = centred.cols();
   if (samples < 2) throw InputError("PCA-EM needs at least two training deformations");
   if (settings.dimensions < 1) throw UsageError("the latent dimension must be at least 1");
@@ -58,11 +60,13 @@ Eigen::MatrixXd pca_em(const Eigen::MatrixXd& centred, const PcaEmSettings& sett
   Eigen::MatrixXd loadings = random_matrix(centred.rows(), q, settings.seed);
   Eigen::MatrixXd subspace = orthonormal_columns(loadings);
   for (int iteration = 0; iteration < settings.max_iterations; ++iteration) {
-    const Eigen::MatrixXd latent =
-        (loadings.transpose() * loadings).completeOrthogonalDecomposition().solve(loadings.transpose() * centred);
+    const Eigen::MatrixXd latent = (loadings.transpose() * loadings)
+                                       .completeOrthogonalDecomposition()
+                                       .solve(loadings.transpose() * centred);
     loadings = centred * latent.transpose() *
                (latent * latent.transpose()).completeOrthogonalDecomposition().pseudoInverse();
-    if (!loadings.allFinite() || loadings.norm() == 0.0) break;  // data of lower rank than q: keep what we have
+    if (!loadings.allFinite() || loadings.norm() == 0.0)
+      break;  // data of lower rank than q: keep what we have
     Eigen::MatrixXd next = orthonormal_columns(loadings);
     const bool converged = subspace_distance(subspace, next) < settings.tolerance;
     subspace = std::move(next);
@@ -77,9 +81,9 @@ Eigen::MatrixXd pca_em(const Eigen::MatrixXd& centred, const PcaEmSettings& sett
   return subspace * eigen.eigenvectors().rowwise().reverse();
 }
 
-ShapeSpace learn_shape_space(const std::string& name, const std::vector<int>& point_indices, const Points& canonical,
-                             double beta, const std::vector<Points>& training_weights,
-                             const PcaEmSettings& settings) {
+ShapeSpace learn_shape_space(const std::string& name, const std::vector<int>& point_indices,
+                             const Points& canonical, double beta,
+                             const std::vector<Points>& training_weights, const PcaEmSettings& settings) {
   if (training_weights.size() < 2)
     throw InputError("shape space '" + name + "' needs at least two training deformations, got " +
                      std::to_string(training_weights.size()));
@@ -90,7 +94,8 @@ ShapeSpace learn_shape_space(const std::string& name, const std::vector<int>& po
       throw InputError("shape space '" + name + "': a training deformation has " +
                        std::to_string(training_weights[i].rows()) + " rows for " + std::to_string(m) +
                        " canonical points");
-    data.col(static_cast<Eigen::Index>(i)) = Eigen::Map<const Eigen::VectorXd>(training_weights[i].data(), 3 * m);
+    data.col(static_cast<Eigen::Index>(i)) =
+        Eigen::Map<const Eigen::VectorXd>(training_weights[i].data(), 3 * m);
   }
 
   // PCA runs on the displacements D_i = G W_i, which are what a shape is; W itself has large components

@@ -11,10 +11,10 @@ namespace partreg::core::detail {
 namespace {
 
 struct Pair {
-  int row;                   ///< canonical row of the space
-  Eigen::Vector3d target;    ///< observed point (normalised)
+  int row;                 ///< canonical row of the space
+  Eigen::Vector3d target;  ///< observed point (normalised)
   double squared_distance;
-  double weight = 1.0;       ///< robust (IRLS) weight times the direction's 1 / count
+  double weight = 1.0;  ///< robust (IRLS) weight times the direction's 1 / count
 };
 
 // Every correspondence of one outer step as one cost function with analytic derivatives:
@@ -42,7 +42,8 @@ class StepCost : public ceres::CostFunction {
     for (std::size_t i = 0; i < pairs_.size(); ++i) {
       const Pair& pair = pairs_[i];
       const Eigen::Index row = 3 * pair.row;
-      const Eigen::Vector3d p = space_.canonical.row(pair.row).transpose() + space_.kernel_mean.segment<3>(row) +
+      const Eigen::Vector3d p = space_.canonical.row(pair.row).transpose() +
+                                space_.kernel_mean.segment<3>(row) +
                                 space_.kernel_basis.middleRows<3>(row) * latent;
       const double root = std::sqrt(pair.weight);
       const Eigen::Vector3d rotated = R * p;
@@ -53,14 +54,17 @@ class StepCost : public ceres::CostFunction {
         Eigen::Map<RowMajor> J(jacobians[0], num_residuals(), 4);
         Eigen::Matrix3d skew_p;
         skew_p << 0, -p.z(), p.y(), p.z(), 0, -p.x(), -p.y(), p.x(), 0;
-        const Eigen::Matrix3d d_vector = -2.0 * w * skew_p + 2.0 * (v.dot(p) * Eigen::Matrix3d::Identity() +
-                                                                     v * p.transpose() - 2.0 * p * v.transpose());
+        const Eigen::Matrix3d d_vector =
+            -2.0 * w * skew_p +
+            2.0 * (v.dot(p) * Eigen::Matrix3d::Identity() + v * p.transpose() - 2.0 * p * v.transpose());
         J.block(offset, 0, 3, 3) = root * scale * d_vector;
         J.block(offset, 3, 3, 1) = root * scale * 2.0 * v.cross(p);
       }
-      if (jacobians[1]) Eigen::Map<RowMajor>(jacobians[1], num_residuals(), 3).block(offset, 0, 3, 3) =
-                            root * Eigen::Matrix3d::Identity();
-      if (jacobians[2]) Eigen::Map<Eigen::VectorXd>(jacobians[2], num_residuals()).segment<3>(offset) = root * rotated;
+      if (jacobians[1])
+        Eigen::Map<RowMajor>(jacobians[1], num_residuals(), 3).block(offset, 0, 3, 3) =
+            root * Eigen::Matrix3d::Identity();
+      if (jacobians[2])
+        Eigen::Map<Eigen::VectorXd>(jacobians[2], num_residuals()).segment<3>(offset) = root * rotated;
       if (jacobians[3])
         Eigen::Map<RowMajor>(jacobians[3], num_residuals(), q_).block(offset, 0, 3, q_) =
             root * scale * R * space_.kernel_basis.middleRows<3>(row);
@@ -86,7 +90,9 @@ class StepCost : public ceres::CostFunction {
   Eigen::VectorXd inverse_sd_;
 };
 
-Points deformed_points(const ShapeSpace& space, const Eigen::VectorXd& latent) { return space.deformed(latent); }
+Points deformed_points(const ShapeSpace& space, const Eigen::VectorXd& latent) {
+  return space.deformed(latent);
+}
 
 // Which canonical points face the viewpoint under the current pose (all of them without a viewpoint).
 std::vector<bool> visible_rows(const Points& posed, const Points& normals, const Pose& pose,
@@ -112,8 +118,8 @@ struct Correspondences {
   std::vector<Pair> from_canonical, from_observed;
 };
 
-Correspondences correspond(const Points& posed, const std::vector<bool>& visible, const Observation& observation,
-                           const RegistrationSettings& settings) {
+Correspondences correspond(const Points& posed, const std::vector<bool>& visible,
+                           const Observation& observation, const RegistrationSettings& settings) {
   Correspondences result;
   std::vector<int> active;
   for (std::size_t m = 0; m < visible.size(); ++m)
@@ -127,11 +133,13 @@ Correspondences correspond(const Points& posed, const std::vector<bool>& visible
   }
   if (settings.direction != Direction::canonical_to_observed) {
     Points active_points(static_cast<Eigen::Index>(active.size()), 3);
-    for (std::size_t i = 0; i < active.size(); ++i) active_points.row(static_cast<Eigen::Index>(i)) = posed.row(active[i]);
+    for (std::size_t i = 0; i < active.size(); ++i)
+      active_points.row(static_cast<Eigen::Index>(i)) = posed.row(active[i]);
     const KdTree tree(active_points);
     for (Eigen::Index n = 0; n < observation.points.rows(); ++n) {
       const auto [i, squared] = tree.nearest(observation.points.row(n).transpose());
-      result.from_observed.push_back({active[static_cast<std::size_t>(i)], observation.points.row(n).transpose(), squared});
+      result.from_observed.push_back(
+          {active[static_cast<std::size_t>(i)], observation.points.row(n).transpose(), squared});
     }
   }
   if (settings.loss == Loss::trimmed) {
@@ -179,8 +187,8 @@ SpaceSolution solve_space(const ShapeSpace& space, const Points& normals, const 
     const Eigen::Vector3d before_translation = solution.pose.translation;
     const Eigen::Quaterniond before_rotation = solution.pose.rotation;
     const Points posed = solution.pose.apply(deformed_points(space, solution.latent));
-    const Correspondences pairs =
-        correspond(posed, visible_rows(posed, normals, solution.pose, observation.viewpoint), observation, settings);
+    const Correspondences pairs = correspond(
+        posed, visible_rows(posed, normals, solution.pose, observation.viewpoint), observation, settings);
     if (pairs.from_canonical.empty() && pairs.from_observed.empty()) break;
 
     ceres::Problem problem;
@@ -188,11 +196,13 @@ SpaceSolution solve_space(const ShapeSpace& space, const Points& normals, const 
     double* translation = solution.pose.translation.data();
     double* scale = &solution.pose.scale;
     double* latent = solution.latent.data();
-    problem.AddResidualBlock(new StepCost(space, weighted_pairs(pairs, settings), settings.prior_weight), nullptr,
-                             rotation, translation, scale, latent);
+    problem.AddResidualBlock(new StepCost(space, weighted_pairs(pairs, settings), settings.prior_weight),
+                             nullptr, rotation, translation, scale, latent);
     problem.SetManifold(rotation, new ceres::EigenQuaternionManifold);
-    if (!settings.estimate_scale) problem.SetParameterBlockConstant(scale);
-    else problem.SetParameterLowerBound(scale, 0, 0.2);
+    if (!settings.estimate_scale)
+      problem.SetParameterBlockConstant(scale);
+    else
+      problem.SetParameterLowerBound(scale, 0, 0.2);
 
     ceres::Solver::Options options;
     options.linear_solver_type = ceres::DENSE_NORMAL_CHOLESKY;  // 13 unknowns, thousands of residuals
@@ -206,9 +216,11 @@ SpaceSolution solve_space(const ShapeSpace& space, const Points& normals, const 
     solution.cost = summary.final_cost;
     solution.steps.emplace_back(solution.latent, solution.pose);
     solution.step_costs.push_back(summary.final_cost);
-    solution.step_seconds.push_back(std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
+    solution.step_seconds.push_back(
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
     // Settled when neither the cost nor the parameters move any more (correspondences make the cost jitter).
-    const double moved = (solution.latent - before_latent).norm() + (solution.pose.translation - before_translation).norm() +
+    const double moved = (solution.latent - before_latent).norm() +
+                         (solution.pose.translation - before_translation).norm() +
                          solution.pose.rotation.angularDistance(before_rotation);
     if (std::abs(previous - summary.final_cost) <= settings.tolerance * std::max(summary.final_cost, 1e-12) ||
         moved < settings.tolerance)

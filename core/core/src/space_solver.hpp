@@ -12,8 +12,8 @@ namespace partreg::core::detail {
 
 /// The observation in normalised units: centred on its centroid, divided by the model's diagonal.
 struct Observation {
-  Points points;                       ///< downsampled, normalised
-  std::unique_ptr<KdTree> tree;        ///< over `points`
+  Points points;                             ///< downsampled, normalised
+  std::unique_ptr<KdTree> tree;              ///< over `points`
   std::optional<Eigen::Vector3d> viewpoint;  ///< normalised observed frame
 };
 

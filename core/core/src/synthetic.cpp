@@ -45,8 +45,9 @@ Eigen::Vector3d tube(double u, double v, Centre centre, double thickness, const 
 Eigen::Vector3d mug(const std::vector<double>& p, int part, double u, double v) {
   const double radius = p[0], height = p[1], taper = p[2];
   if (part == 0)
-    return revolution(u, v, Eigen::Vector3d::Zero(), [&](double t) { return radius * (1.0 + (taper - 1.0) * t); },
-                      [&](double t) { return height * t; });
+    return revolution(
+        u, v, Eigen::Vector3d::Zero(), [&](double t) { return radius * (1.0 + (taper - 1.0) * t); },
+        [&](double t) { return height * t; });
   const double reach = p[3], span = p[4] * height, thickness = p[5];
   const double mid = 0.55 * height;
   auto centre = [&](double s) {  // a C-shape from the upper to the lower attachment on the +x side
@@ -63,7 +64,8 @@ Eigen::Vector3d drill(const std::vector<double>& p, int part, double u, double v
   if (part == 0) {  // base: a rounded box (superellipse cross-section), revolved in u, swept in v
     const double a = kTau * u, t = M_PI * (v - 0.5);
     auto sgnpow = [](double x, double e) { return std::copysign(std::pow(std::abs(x), e), x); };
-    return {0.5 * base_w * sgnpow(std::cos(t), 0.4) * sgnpow(std::cos(a), 0.4), 0.03 * sgnpow(std::sin(t), 0.4) + 0.03,
+    return {0.5 * base_w * sgnpow(std::cos(t), 0.4) * sgnpow(std::cos(a), 0.4),
+            0.03 * sgnpow(std::sin(t), 0.4) + 0.03,
             0.5 * base_d * sgnpow(std::cos(t), 0.4) * sgnpow(std::sin(a), 0.4)};
   }
   const Eigen::Vector3d grip_top(0.0, 0.06 + grip * std::cos(tilt), grip * std::sin(tilt));
@@ -85,12 +87,14 @@ Eigen::Vector3d drill(const std::vector<double>& p, int part, double u, double v
 Eigen::Vector3d spray_bottle(const std::vector<double>& p, int part, double u, double v) {
   const double radius = p[0], height = p[1], shoulder = p[2], neck_r = p[3], neck_h = p[4], trigger = p[5];
   if (part == 0)
-    return revolution(u, v, Eigen::Vector3d::Zero(),
-                      [&](double t) { return t < 0.8 ? radius : radius * (1.0 - shoulder * (t - 0.8) / 0.2); },
-                      [&](double t) { return height * t; });
+    return revolution(
+        u, v, Eigen::Vector3d::Zero(),
+        [&](double t) { return t < 0.8 ? radius : radius * (1.0 - shoulder * (t - 0.8) / 0.2); },
+        [&](double t) { return height * t; });
   if (part == 1)
-    return revolution(u, v, Eigen::Vector3d(0, height * 0.98, 0), [&](double) { return neck_r; },
-                      [&](double t) { return neck_h * t; });
+    return revolution(
+        u, v, Eigen::Vector3d(0, height * 0.98, 0), [&](double) { return neck_r; },
+        [&](double t) { return neck_h * t; });
   const Eigen::Vector3d top(0.0, height + 0.8 * neck_h, -neck_r);
   auto centre = [&](double s) {  // forward from the neck, then down: the trigger's lever
     if (s < 0.5) return Eigen::Vector3d(top + Eigen::Vector3d(0, 0, -0.6 * trigger * s / 0.5));
@@ -105,9 +109,12 @@ struct Range {
 
 std::vector<Range> parameter_ranges(SyntheticCategory category) {
   switch (category) {
-    case SyntheticCategory::mug: return {{0.035, 0.05}, {0.08, 0.12}, {0.85, 1.2}, {0.025, 0.04}, {0.45, 0.7}, {0.006, 0.01}};
-    case SyntheticCategory::drill: return {{0.06, 0.09}, {0.09, 0.13}, {0.10, 0.14}, {-0.1, 0.25}, {0.12, 0.18}, {0.03, 0.06}};
-    case SyntheticCategory::spray_bottle: return {{0.035, 0.05}, {0.14, 0.2}, {0.3, 0.6}, {0.012, 0.018}, {0.03, 0.05}, {0.03, 0.05}};
+    case SyntheticCategory::mug:
+      return {{0.035, 0.05}, {0.08, 0.12}, {0.85, 1.2}, {0.025, 0.04}, {0.45, 0.7}, {0.006, 0.01}};
+    case SyntheticCategory::drill:
+      return {{0.06, 0.09}, {0.09, 0.13}, {0.10, 0.14}, {-0.1, 0.25}, {0.12, 0.18}, {0.03, 0.06}};
+    case SyntheticCategory::spray_bottle:
+      return {{0.035, 0.05}, {0.14, 0.2}, {0.3, 0.6}, {0.012, 0.018}, {0.03, 0.05}, {0.03, 0.05}};
   }
   return {};
 }
@@ -123,28 +130,38 @@ SyntheticCategory parse_synthetic_category(const std::string& name) {
 
 std::string to_string(SyntheticCategory category) {
   switch (category) {
-    case SyntheticCategory::mug: return "mug";
-    case SyntheticCategory::drill: return "drill";
-    case SyntheticCategory::spray_bottle: return "spray_bottle";
+    case SyntheticCategory::mug:
+      return "mug";
+    case SyntheticCategory::drill:
+      return "drill";
+    case SyntheticCategory::spray_bottle:
+      return "spray_bottle";
   }
   return "unknown";
 }
 
 std::vector<std::string> part_names(SyntheticCategory category) {
   switch (category) {
-    case SyntheticCategory::mug: return {"body", "handle"};
-    case SyntheticCategory::drill: return {"base", "body", "chuck"};
-    case SyntheticCategory::spray_bottle: return {"body", "neck", "trigger"};
+    case SyntheticCategory::mug:
+      return {"body", "handle"};
+    case SyntheticCategory::drill:
+      return {"base", "body", "chuck"};
+    case SyntheticCategory::spray_bottle:
+      return {"body", "neck", "trigger"};
   }
   return {};
 }
 
-Eigen::Vector3d evaluate_surface(SyntheticCategory category, const std::vector<double>& p, int part, double u, double v) {
+Eigen::Vector3d evaluate_surface(SyntheticCategory category, const std::vector<double>& p, int part, double u,
+                                 double v) {
   if (p.size() != parameter_ranges(category).size()) throw UsageError("wrong number of shape parameters");
   switch (category) {
-    case SyntheticCategory::mug: return mug(p, part, u, v);
-    case SyntheticCategory::drill: return drill(p, part, u, v);
-    case SyntheticCategory::spray_bottle: return spray_bottle(p, part, u, v);
+    case SyntheticCategory::mug:
+      return mug(p, part, u, v);
+    case SyntheticCategory::drill:
+      return drill(p, part, u, v);
+    case SyntheticCategory::spray_bottle:
+      return spray_bottle(p, part, u, v);
   }
   return Eigen::Vector3d::Zero();
 }
@@ -157,7 +174,8 @@ SyntheticInstance make_synthetic_instance(SyntheticCategory category, std::uint6
   std::snprintf(name, sizeof name, "%s_%03d", to_string(category).c_str(), index);
   instance.name = name;
   for (const Range& range : parameter_ranges(category))
-    instance.shape_parameters.push_back(std::uniform_real_distribution<double>(range.low, range.high)(generator));
+    instance.shape_parameters.push_back(
+        std::uniform_real_distribution<double>(range.low, range.high)(generator));
   const auto names = part_names(category);
   for (int part = 0; part < static_cast<int>(names.size()); ++part) {
     SyntheticPart out{names[static_cast<std::size_t>(part)], {}};
@@ -180,7 +198,8 @@ SyntheticInstance make_synthetic_instance(SyntheticCategory category, std::uint6
   return instance;
 }
 
-std::vector<SyntheticInstance> make_synthetic_category(SyntheticCategory category, int count, std::uint64_t seed) {
+std::vector<SyntheticInstance> make_synthetic_category(SyntheticCategory category, int count,
+                                                       std::uint64_t seed) {
   if (count < 1) throw UsageError("a synthetic category needs at least one instance");
   std::vector<SyntheticInstance> instances;
   for (int i = 0; i < count; ++i) instances.push_back(make_synthetic_instance(category, seed, i));

@@ -27,14 +27,16 @@ double mean_nearest_distance(const Points& from, const Points& to) {
   return squared.cwiseSqrt().mean();
 }
 
-void check_instances(const std::vector<TrainingInstance>& instances, const std::vector<std::string>& part_names) {
+void check_instances(const std::vector<TrainingInstance>& instances,
+                     const std::vector<std::string>& part_names) {
   if (instances.size() < 2)
     throw InputError("training needs at least two instances, got " + std::to_string(instances.size()));
   for (const TrainingInstance& instance : instances) {
     if (instance.points.rows() < 10)
       throw InputError("instance '" + instance.name + "' has only " + std::to_string(instance.points.rows()) +
                        " points");
-    if (!instance.points.allFinite()) throw InputError("instance '" + instance.name + "' has non-finite points");
+    if (!instance.points.allFinite())
+      throw InputError("instance '" + instance.name + "' has non-finite points");
     if (instance.part.size() == 0) continue;
     if (instance.part.size() != instance.points.rows())
       throw InputError("instance '" + instance.name + "': part labels do not match its points");
@@ -96,7 +98,8 @@ std::size_t choose_canonical(const std::vector<TrainingInstance>& instances, std
   for (std::size_t i = 0; i < samples.size(); ++i) {
     double cost = 0.0;
     for (std::size_t j = 0; j < samples.size(); ++j)
-      if (i != j) cost += mean_nearest_distance(samples[i], samples[j]) + mean_nearest_distance(samples[j], samples[i]);
+      if (i != j)
+        cost += mean_nearest_distance(samples[i], samples[j]) + mean_nearest_distance(samples[j], samples[i]);
     cost /= 2.0 * static_cast<double>(samples.size() - 1) * diagonal;
     if (cost < best_cost) best_cost = cost, best = i;
   }
@@ -109,13 +112,15 @@ std::size_t choose_canonical(const std::vector<TrainingInstance>& instances, std
   return best;
 }
 
-Eigen::VectorXi propagate_labels(const Points& labelled, const Eigen::VectorXi& labelled_part, const Points& points) {
+Eigen::VectorXi propagate_labels(const Points& labelled, const Eigen::VectorXi& labelled_part,
+                                 const Points& points) {
   const KdTree tree(labelled);
   std::vector<int> index;
   Eigen::VectorXd squared;
   tree.nearest_all(points, index, squared);
   Eigen::VectorXi part(points.rows());
-  for (Eigen::Index i = 0; i < points.rows(); ++i) part[i] = labelled_part[index[static_cast<std::size_t>(i)]];
+  for (Eigen::Index i = 0; i < points.rows(); ++i)
+    part[i] = labelled_part[index[static_cast<std::size_t>(i)]];
   return part;
 }
 
@@ -150,7 +155,8 @@ std::size_t find_canonical(const std::vector<TrainingInstance>& instances, const
   throw UsageError("no instance named '" + *settings.canonical + "' (instances: " + names + ")");
 }
 
-void set_canonical(CategoryModel& model, const TrainingInstance& canonical, const TrainingSettings& settings) {
+void set_canonical(CategoryModel& model, const TrainingInstance& canonical,
+                   const TrainingSettings& settings) {
   model.normalization = Normalization::fit(canonical.points);
   const Target sample = make_target(canonical, model.normalization, settings.canonical_points);
   model.canonical = sample.points;
@@ -161,9 +167,10 @@ void set_canonical(CategoryModel& model, const TrainingInstance& canonical, cons
   }
   model.canonical_mesh.vertices = model.normalization.apply(canonical.mesh.vertices);
   model.canonical_mesh.faces = canonical.mesh.faces;
-  model.mesh_vertex_part = canonical.mesh_vertex_part.size() == canonical.mesh.vertices.rows()
-                               ? canonical.mesh_vertex_part
-                               : propagate_labels(model.canonical, model.canonical_part, model.canonical_mesh.vertices);
+  model.mesh_vertex_part =
+      canonical.mesh_vertex_part.size() == canonical.mesh.vertices.rows()
+          ? canonical.mesh_vertex_part
+          : propagate_labels(model.canonical, model.canonical_part, model.canonical_mesh.vertices);
 }
 
 Points rows_of_part(const Target& target, int part) {
@@ -201,8 +208,8 @@ CategoryModel train_category(const std::string& category, const std::vector<Trai
     if (i == canonical_index) {
       holistic_weights.push_back(Points::Zero(m, 3));
     } else {
-      const CpdRun run = register_onto(model.canonical, target.points, settings, instances[i].name, "holistic",
-                                       out, progress);
+      const CpdRun run = register_onto(model.canonical, target.points, settings, instances[i].name,
+                                       "holistic", out, progress);
       holistic_weights.push_back(run.weights);
       if (model.has_parts()) {
         const Eigen::VectorXi propagated = propagate_labels(run.moved, model.canonical_part, target.points);

@@ -14,7 +14,8 @@ void write_atomically(const std::filesystem::path& destination,
   static std::atomic<int> counter{0};
   const std::filesystem::path folder = destination.parent_path().empty() ? "." : destination.parent_path();
   if (!std::filesystem::is_directory(folder))
-    throw InputError("cannot write " + destination.string() + ": folder " + folder.string() + " does not exist");
+    throw InputError("cannot write " + destination.string() + ": folder " + folder.string() +
+                     " does not exist");
   const std::filesystem::path temporary =
       folder / ("." + destination.filename().string() + ".partial-" + std::to_string(::getpid()) + "-" +
                 std::to_string(counter++));

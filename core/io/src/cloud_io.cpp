@@ -1,9 +1,9 @@
 #include "partreg/io/cloud_io.hpp"
 
 #include <algorithm>
-#include <set>
 #include <cstring>
 #include <fstream>
+#include <set>
 #include <sstream>
 
 #include "partreg/core/errors.hpp"
@@ -26,7 +26,8 @@ double read_scalar(std::istream& in, const std::string& type, PlyHeader::Format 
   unsigned char bytes[8] = {};
   const std::size_t size = detail::ply_type_size(type);
   in.read(reinterpret_cast<char*>(bytes), static_cast<std::streamsize>(size));
-  if (format == PlyHeader::Format::binary_big_endian) std::reverse(bytes, bytes + size);  // files are LE or BE; we are LE
+  if (format == PlyHeader::Format::binary_big_endian)
+    std::reverse(bytes, bytes + size);  // files are LE or BE; we are LE
   auto as = [&](auto value) {
     std::memcpy(&value, bytes, sizeof value);
     return static_cast<double>(value);
@@ -53,13 +54,15 @@ CloudFile read_ply_cloud(const std::filesystem::path& path) {
   const auto n = static_cast<Eigen::Index>(vertex.count);
   std::map<std::string, Eigen::VectorXd> columns;
   for (const auto& property : vertex.properties) {
-    if (property.is_list) throw InputError(file + ": list property '" + property.name + "' on vertices is not supported");
+    if (property.is_list)
+      throw InputError(file + ": list property '" + property.name + "' on vertices is not supported");
     columns[property.name].resize(n);
   }
   for (const char* axis : {"x", "y", "z"})
     if (!columns.count(axis)) throw InputError(file + ": PLY vertices have no '" + axis + "' property");
   for (Eigen::Index i = 0; i < n; ++i)
-    for (const auto& property : vertex.properties) columns[property.name][i] = read_scalar(in, property.type, header.format);
+    for (const auto& property : vertex.properties)
+      columns[property.name][i] = read_scalar(in, property.type, header.format);
   if (!in) throw InputError(file + " is truncated: it ends before its " + std::to_string(n) + " vertices");
 
   CloudFile result;
@@ -95,12 +98,15 @@ CloudFile read_xyz(const std::filesystem::path& path) {
     for (std::string word; words >> word;) {
       char* end = nullptr;
       row.push_back(std::strtod(word.c_str(), &end));
-      if (*end != '\0') throw InputError(path.string() + ":" + std::to_string(line_number) + ": not a number: '" + word + "'");
+      if (*end != '\0')
+        throw InputError(path.string() + ":" + std::to_string(line_number) + ": not a number: '" + word +
+                         "'");
     }
     if (row.empty()) continue;
     if (columns == 0) columns = row.size();
     if (row.size() != columns || (columns != 3 && columns != 6))
-      throw InputError(path.string() + ":" + std::to_string(line_number) + ": expected 3 or 6 numbers per line");
+      throw InputError(path.string() + ":" + std::to_string(line_number) +
+                       ": expected 3 or 6 numbers per line");
     values.insert(values.end(), row.begin(), row.end());
   }
   CloudFile result;
@@ -119,7 +125,8 @@ void drop_non_finite(CloudFile& file, const std::string& name) {
   std::vector<int> keep;
   for (Eigen::Index i = 0; i < n; ++i)
     if (file.cloud.points.row(i).allFinite()) keep.push_back(static_cast<int>(i));
-  if (keep.empty()) throw InputError("all " + std::to_string(n) + " points of " + name + " are NaN or infinite");
+  if (keep.empty())
+    throw InputError("all " + std::to_string(n) + " points of " + name + " are NaN or infinite");
   file.dropped_non_finite = static_cast<std::size_t>(n) - keep.size();
   if (file.dropped_non_finite == 0) return;
   file.cloud.points = file.cloud.points(keep, Eigen::all).eval();
@@ -136,25 +143,35 @@ CloudFile read_cloud_file(const std::filesystem::path& path) {
   if (std::filesystem::file_size(path) == 0) throw InputError(name + " is empty");
   const std::string extension = lower_extension(path);
   CloudFile file;
-  if (extension == ".pcd") file = detail::read_pcd(path);
-  else if (extension == ".ply") file = read_ply_cloud(path);
-  else if (extension == ".xyz" || extension == ".txt") file = read_xyz(path);
-  else throw InputError(name + ": unknown point cloud extension '" + extension + "' (expected .pcd, .ply, .xyz, .txt)");
+  if (extension == ".pcd")
+    file = detail::read_pcd(path);
+  else if (extension == ".ply")
+    file = read_ply_cloud(path);
+  else if (extension == ".xyz" || extension == ".txt")
+    file = read_xyz(path);
+  else
+    throw InputError(name + ": unknown point cloud extension '" + extension +
+                     "' (expected .pcd, .ply, .xyz, .txt)");
   drop_non_finite(file, name);
   return file;
 }
 
-void write_cloud_ply(const std::filesystem::path& path, const core::Cloud& cloud, const PointAttributes& attributes,
-                     bool binary) {
+void write_cloud_ply(const std::filesystem::path& path, const core::Cloud& cloud,
+                     const PointAttributes& attributes, bool binary) {
   const Eigen::Index n = cloud.points.rows();
   const bool normals = cloud.normals.rows() == n && n > 0;
   for (const auto& [name, values] : attributes.integers)
-    if (values.size() != n) throw UsageError("attribute '" + name + "' has " + std::to_string(values.size()) + " values for " + std::to_string(n) + " points");
+    if (values.size() != n)
+      throw UsageError("attribute '" + name + "' has " + std::to_string(values.size()) + " values for " +
+                       std::to_string(n) + " points");
   for (const auto& [name, values] : attributes.reals)
-    if (values.size() != n) throw UsageError("attribute '" + name + "' has " + std::to_string(values.size()) + " values for " + std::to_string(n) + " points");
+    if (values.size() != n)
+      throw UsageError("attribute '" + name + "' has " + std::to_string(values.size()) + " values for " +
+                       std::to_string(n) + " points");
   write_atomically(path, [&](const std::filesystem::path& temporary) {
     std::ofstream out(temporary, std::ios::binary);
-    out << "ply\nformat " << (binary ? "binary_little_endian" : "ascii") << " 1.0\ncomment written by partreg\n"
+    out << "ply\nformat " << (binary ? "binary_little_endian" : "ascii")
+        << " 1.0\ncomment written by partreg\n"
         << "element vertex " << n << "\nproperty float x\nproperty float y\nproperty float z\n";
     if (normals) out << "property float nx\nproperty float ny\nproperty float nz\n";
     for (const auto& entry : attributes.integers) out << "property int " << entry.first << '\n';
@@ -163,17 +180,22 @@ void write_cloud_ply(const std::filesystem::path& path, const core::Cloud& cloud
     out.precision(9);
     auto put_float = [&](double value, bool last) {
       const float f = static_cast<float>(value);
-      if (binary) out.write(reinterpret_cast<const char*>(&f), 4);
-      else out << f << (last ? '\n' : ' ');
+      if (binary)
+        out.write(reinterpret_cast<const char*>(&f), 4);
+      else
+        out << f << (last ? '\n' : ' ');
     };
     auto put_int = [&](int value, bool last) {
-      if (binary) out.write(reinterpret_cast<const char*>(&value), 4);
-      else out << value << (last ? '\n' : ' ');
+      if (binary)
+        out.write(reinterpret_cast<const char*>(&value), 4);
+      else
+        out << value << (last ? '\n' : ' ');
     };
     const std::size_t extra = attributes.integers.size() + attributes.reals.size();
     for (Eigen::Index i = 0; i < n; ++i) {
       for (int d = 0; d < 3; ++d) put_float(cloud.points(i, d), !normals && extra == 0 && d == 2);
-      if (normals) for (int d = 0; d < 3; ++d) put_float(cloud.normals(i, d), extra == 0 && d == 2);
+      if (normals)
+        for (int d = 0; d < 3; ++d) put_float(cloud.normals(i, d), extra == 0 && d == 2);
       std::size_t written = 0;
       for (const auto& entry : attributes.integers) put_int(entry.second[i], ++written == extra);
       for (const auto& entry : attributes.reals) put_float(entry.second[i], ++written == extra);

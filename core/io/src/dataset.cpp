@@ -51,10 +51,12 @@ core::TrainingInstance instance_from_parts(const std::string& name, const std::v
   std::vector<int> sample_parts, vertex_parts;
   std::vector<core::Mesh> meshes;
   for (std::size_t p = 0; p < parts.size(); ++p) {
-    const auto count = std::max<std::size_t>(1, static_cast<std::size_t>(options.points_per_instance * areas[p] / total));
+    const auto count =
+        std::max<std::size_t>(1, static_cast<std::size_t>(options.points_per_instance * areas[p] / total));
     samples.push_back(core::sample_surface(parts[p], count, seed + 7919 * p).points);
     sample_parts.insert(sample_parts.end(), count, static_cast<int>(p));
-    vertex_parts.insert(vertex_parts.end(), static_cast<std::size_t>(parts[p].vertices.rows()), static_cast<int>(p));
+    vertex_parts.insert(vertex_parts.end(), static_cast<std::size_t>(parts[p].vertices.rows()),
+                        static_cast<int>(p));
   }
   Eigen::Index rows = 0, vertices = 0, faces = 0;
   for (std::size_t p = 0; p < parts.size(); ++p) {
@@ -69,12 +71,14 @@ core::TrainingInstance instance_from_parts(const std::string& name, const std::v
   for (std::size_t p = 0; p < parts.size(); ++p) {
     instance.points.middleRows(row, samples[p].rows()) = samples[p];
     instance.mesh.vertices.middleRows(vertex, parts[p].vertices.rows()) = parts[p].vertices;
-    instance.mesh.faces.middleRows(face, parts[p].faces.rows()) = parts[p].faces.array() + static_cast<int>(vertex);
+    instance.mesh.faces.middleRows(face, parts[p].faces.rows()) =
+        parts[p].faces.array() + static_cast<int>(vertex);
     row += samples[p].rows();
     vertex += parts[p].vertices.rows();
     face += parts[p].faces.rows();
   }
-  instance.part = Eigen::Map<Eigen::VectorXi>(sample_parts.data(), static_cast<Eigen::Index>(sample_parts.size()));
+  instance.part =
+      Eigen::Map<Eigen::VectorXi>(sample_parts.data(), static_cast<Eigen::Index>(sample_parts.size()));
   instance.mesh_vertex_part =
       Eigen::Map<Eigen::VectorXi>(vertex_parts.data(), static_cast<Eigen::Index>(vertex_parts.size()));
   return instance;
@@ -105,14 +109,17 @@ std::vector<std::string> part_stems(const fs::path& folder) {
   return names;
 }
 
-Dataset read_part_folders(const fs::path& folder, const std::vector<fs::path>& entries, const DatasetOptions& options) {
+Dataset read_part_folders(const fs::path& folder, const std::vector<fs::path>& entries,
+                          const DatasetOptions& options) {
   Dataset dataset;
   dataset.part_folders = true;
   dataset.part_names = part_stems(entries.front());
-  if (dataset.part_names.empty()) throw InputError("instance folder " + entries.front().string() + " holds no part file");
+  if (dataset.part_names.empty())
+    throw InputError("instance folder " + entries.front().string() + " holds no part file");
   for (std::size_t i = 0; i < entries.size(); ++i) {
     if (!fs::is_directory(entries[i]))
-      throw InputError(folder.string() + " mixes instance folders and files (" + entries[i].filename().string() + ")");
+      throw InputError(folder.string() + " mixes instance folders and files (" +
+                       entries[i].filename().string() + ")");
     if (part_stems(entries[i]) != dataset.part_names)
       throw InputError("instance folder " + entries[i].string() + " has parts that differ from those of " +
                        entries.front().string() + " (every instance needs the same part files)");
@@ -130,8 +137,9 @@ Dataset read_instance_files(const std::vector<fs::path>& entries, const DatasetO
     core::TrainingInstance instance;
     instance.name = entries[i].stem().string();
     if (is_mesh_file(entries[i])) instance.mesh = read_mesh(entries[i]);
-    instance.points = read_as_cloud(entries[i], static_cast<std::size_t>(options.points_per_instance),
-                                    options.seed + i).points;
+    instance.points =
+        read_as_cloud(entries[i], static_cast<std::size_t>(options.points_per_instance), options.seed + i)
+            .points;
     dataset.instances.push_back(std::move(instance));
   }
   return dataset;
@@ -144,29 +152,35 @@ Dataset read_dataset(const fs::path& folder, const DatasetOptions& options) {
   const std::vector<fs::path> entries = sorted_entries(folder);
   if (entries.empty()) throw InputError("dataset folder " + folder.string() + " is empty");
   if (entries.size() < 2)
-    throw InputError("dataset folder " + folder.string() + " holds only one instance; training needs at least two");
+    throw InputError("dataset folder " + folder.string() +
+                     " holds only one instance; training needs at least two");
   Dataset dataset = fs::is_directory(entries.front()) ? read_part_folders(folder, entries, options)
                                                       : read_instance_files(entries, options);
   dataset.name = fs::absolute(folder).lexically_normal().filename().string();
-  if (dataset.name.empty()) dataset.name = fs::absolute(folder).lexically_normal().parent_path().filename().string();
+  if (dataset.name.empty())
+    dataset.name = fs::absolute(folder).lexically_normal().parent_path().filename().string();
   return dataset;
 }
 
-void apply_face_labels(Dataset& dataset, const std::string& instance, const std::vector<std::string>& part_names,
-                       const Eigen::VectorXi& face_labels, const DatasetOptions& options) {
-  auto found = std::find_if(dataset.instances.begin(), dataset.instances.end(),
-                            [&](const core::TrainingInstance& candidate) { return candidate.name == instance; });
-  if (found == dataset.instances.end()) throw InputError("the labels are for '" + instance + "', which is not in the dataset");
+void apply_face_labels(Dataset& dataset, const std::string& instance,
+                       const std::vector<std::string>& part_names, const Eigen::VectorXi& face_labels,
+                       const DatasetOptions& options) {
+  auto found =
+      std::find_if(dataset.instances.begin(), dataset.instances.end(),
+                   [&](const core::TrainingInstance& candidate) { return candidate.name == instance; });
+  if (found == dataset.instances.end())
+    throw InputError("the labels are for '" + instance + "', which is not in the dataset");
   const core::Mesh& mesh = found->mesh;
   if (mesh.faces.rows() != face_labels.size())
-    throw InputError("the labels file has " + std::to_string(face_labels.size()) + " face labels but '" + instance +
-                     "' has " + std::to_string(mesh.faces.rows()) + " faces");
+    throw InputError("the labels file has " + std::to_string(face_labels.size()) + " face labels but '" +
+                     instance + "' has " + std::to_string(mesh.faces.rows()) + " faces");
   std::vector<core::Mesh> parts(part_names.size());
   for (std::size_t p = 0; p < parts.size(); ++p) {
     std::vector<int> rows;
     for (Eigen::Index f = 0; f < face_labels.size(); ++f)
       if (face_labels[f] == static_cast<int>(p)) rows.push_back(static_cast<int>(f));
-    if (rows.empty()) throw InputError("part '" + part_names[p] + "' has no face in the labels of '" + instance + "'");
+    if (rows.empty())
+      throw InputError("part '" + part_names[p] + "' has no face in the labels of '" + instance + "'");
     parts[p] = submesh(mesh, rows);
   }
   const auto index = static_cast<std::uint64_t>(found - dataset.instances.begin());

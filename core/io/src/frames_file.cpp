@@ -1,8 +1,7 @@
 #include "partreg/io/frames_file.hpp"
 
-#include <nlohmann/json.hpp>
-
 #include <fstream>
+#include <nlohmann/json.hpp>
 
 #include "partreg/core/errors.hpp"
 #include "partreg/io/atomic_file.hpp"
@@ -28,7 +27,8 @@ std::vector<core::Frame> read_frames_file(const std::filesystem::path& path) {
       }
       const double error = (frame.rotation.transpose() * frame.rotation - Eigen::Matrix3d::Identity()).norm();
       if (!(error < 1e-6) || frame.rotation.determinant() < 0.0)
-        throw InputError(file + ": the rotation of frame '" + frame.name + "' is not a proper orthonormal matrix");
+        throw InputError(file + ": the rotation of frame '" + frame.name +
+                         "' is not a proper orthonormal matrix");
       frames.push_back(frame);
     }
   } catch (const nlohmann::json::exception& e) {
@@ -41,7 +41,8 @@ void write_frames_file(const std::filesystem::path& path, const std::vector<core
   nlohmann::json list = nlohmann::json::array();
   for (const core::Frame& frame : frames) {
     nlohmann::json rotation = nlohmann::json::array();
-    for (int i = 0; i < 3; ++i) rotation.push_back({frame.rotation(i, 0), frame.rotation(i, 1), frame.rotation(i, 2)});
+    for (int i = 0; i < 3; ++i)
+      rotation.push_back({frame.rotation(i, 0), frame.rotation(i, 1), frame.rotation(i, 2)});
     list.push_back({{"name", frame.name},
                     {"position", {frame.position.x(), frame.position.y(), frame.position.z()}},
                     {"rotation", rotation}});

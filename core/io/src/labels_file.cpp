@@ -1,8 +1,7 @@
 #include "partreg/io/labels_file.hpp"
 
-#include <nlohmann/json.hpp>
-
 #include <fstream>
+#include <nlohmann/json.hpp>
 #include <set>
 
 #include "partreg/core/errors.hpp"
@@ -49,13 +48,16 @@ PartLabels read_labels_file(const std::filesystem::path& path) {
     if (std::set<std::string>(labels.names.begin(), labels.names.end()).size() != labels.names.size())
       throw InputError(file + " names a part twice");
     const std::string target = json.at("target").get<std::string>();
-    if (target != "faces" && target != "points") throw InputError(file + ": target must be 'faces' or 'points'");
+    if (target != "faces" && target != "points")
+      throw InputError(file + ": target must be 'faces' or 'points'");
     labels.target = target == "faces" ? PartLabels::Target::faces : PartLabels::Target::points;
     labels.source = json.value("source", "");
     const auto values = json.at("labels").get<std::vector<int>>();
     if (json.at("count").get<std::size_t>() != values.size())
-      throw InputError(file + " says it has " + json.at("count").dump() + " labels but holds " + std::to_string(values.size()));
-    labels.labels = Eigen::Map<const Eigen::VectorXi>(values.data(), static_cast<Eigen::Index>(values.size()));
+      throw InputError(file + " says it has " + json.at("count").dump() + " labels but holds " +
+                       std::to_string(values.size()));
+    labels.labels =
+        Eigen::Map<const Eigen::VectorXi>(values.data(), static_cast<Eigen::Index>(values.size()));
     for (int value : values)
       if (value < -1 || value >= static_cast<int>(labels.names.size()))
         throw InputError(file + " has a label " + std::to_string(value) + " outside its " +
@@ -87,8 +89,8 @@ void write_labels_file(const std::filesystem::path& path, const PartLabels& labe
 
 void check_labels_match(const PartLabels& labels, std::size_t count, const std::string& what) {
   if (static_cast<std::size_t>(labels.labels.size()) != count)
-    throw InputError("the labels file has " + std::to_string(labels.labels.size()) + " labels but there are " +
-                     std::to_string(count) + " " + what);
+    throw InputError("the labels file has " + std::to_string(labels.labels.size()) +
+                     " labels but there are " + std::to_string(count) + " " + what);
 }
 
 }  // namespace partreg::io

@@ -1,9 +1,8 @@
 #include "partreg/io/model_file.hpp"
 
-#include <nlohmann/json.hpp>
-
 #include <cstring>
 #include <fstream>
+#include <nlohmann/json.hpp>
 #include <sstream>
 
 #include "partreg/core/errors.hpp"
@@ -57,10 +56,14 @@ class ArrayWriter {
 };
 
 nlohmann::json training_json(const core::TrainingRecord& record) {
-  return {{"instances", record.instances},       {"canonical", record.canonical},
-          {"canonical_choice", record.canonical_choice}, {"canonical_points", record.canonical_points},
-          {"beta", record.beta},                 {"lambda", record.lambda},
-          {"outlier_weight", record.outlier_weight}, {"latent_dimensions", record.latent_dimensions},
+  return {{"instances", record.instances},
+          {"canonical", record.canonical},
+          {"canonical_choice", record.canonical_choice},
+          {"canonical_points", record.canonical_points},
+          {"beta", record.beta},
+          {"lambda", record.lambda},
+          {"outlier_weight", record.outlier_weight},
+          {"latent_dimensions", record.latent_dimensions},
           {"seed", record.seed}};
 }
 
@@ -77,8 +80,8 @@ void write_model(const std::filesystem::path& path, const core::CategoryModel& m
   nlohmann::json spaces = nlohmann::json::array();
   for (const core::ShapeSpace& space : model.spaces) {
     const std::string prefix = "space." + space.name + ".";
-    arrays.add(prefix + "point_indices", Eigen::Map<const Eigen::VectorXi>(space.point_indices.data(),
-                                                                           space.point_indices.size()));
+    arrays.add(prefix + "point_indices",
+               Eigen::Map<const Eigen::VectorXi>(space.point_indices.data(), space.point_indices.size()));
     arrays.add(prefix + "mean", space.mean);
     arrays.add(prefix + "basis", space.basis);
     arrays.add(prefix + "variances", space.variances);
@@ -92,7 +95,8 @@ void write_model(const std::filesystem::path& path, const core::CategoryModel& m
       {"partreg_version", PARTREG_VERSION},
       {"category", model.category},
       {"normalization",
-       {{"centre", {model.normalization.centre.x(), model.normalization.centre.y(), model.normalization.centre.z()}},
+       {{"centre",
+         {model.normalization.centre.x(), model.normalization.centre.y(), model.normalization.centre.z()}},
         {"scale", model.normalization.scale}}},
       {"part_names", model.part_names},
       {"training", training_json(model.training)},
@@ -134,7 +138,8 @@ class ArrayReader {
     const bool dtype_ok = entry.at("dtype") == (std::is_same_v<Scalar, double> ? "f64" : "i32");
     if (!dtype_ok || rows < 0 || cols < 0 || bytes != static_cast<std::size_t>(rows * cols) * sizeof(Scalar))
       fail("array '" + name + "' has an unexpected type or shape");
-    if (offset + bytes > blob_.size()) fail("is truncated (array '" + name + "' runs past the end of the file)");
+    if (offset + bytes > blob_.size())
+      fail("is truncated (array '" + name + "' runs past the end of the file)");
     if (hex(fnv1a64(blob_.data() + offset, bytes)) != entry.at("fnv1a64").get<std::string>())
       fail("is corrupted (checksum of array '" + name + "' does not match)");
     Eigen::Matrix<Scalar, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor> values(rows, cols);
@@ -142,7 +147,9 @@ class ArrayReader {
     return Matrix(values);
   }
 
-  [[noreturn]] void fail(const std::string& what) const { throw InputError("model file " + file_ + " " + what); }
+  [[noreturn]] void fail(const std::string& what) const {
+    throw InputError("model file " + file_ + " " + what);
+  }
 
  private:
   std::string blob_;
@@ -166,9 +173,10 @@ nlohmann::json read_header(std::ifstream& in, const std::string& file, std::uint
     throw InputError(file + " is not a partreg model file (unreadable header)");
   const int version = header.value("format_version", -1);
   if (version != kModelFormatVersion)
-    throw InputError("model file " + file + " has format version " + std::to_string(version) + " (written by partreg " +
-                     header.value("partreg_version", std::string("?")) + "); this partreg " + PARTREG_VERSION +
-                     " reads version " + std::to_string(kModelFormatVersion) + ": retrain the model");
+    throw InputError("model file " + file + " has format version " + std::to_string(version) +
+                     " (written by partreg " + header.value("partreg_version", std::string("?")) +
+                     "); this partreg " + PARTREG_VERSION + " reads version " +
+                     std::to_string(kModelFormatVersion) + ": retrain the model");
   return header;
 }
 
@@ -190,7 +198,8 @@ core::CategoryModel model_from(const nlohmann::json& header, const ArrayReader& 
   core::CategoryModel model;
   model.category = header.at("category").get<std::string>();
   const auto& centre = header.at("normalization").at("centre");
-  model.normalization.centre = {centre.at(0).get<double>(), centre.at(1).get<double>(), centre.at(2).get<double>()};
+  model.normalization.centre = {centre.at(0).get<double>(), centre.at(1).get<double>(),
+                                centre.at(2).get<double>()};
   model.normalization.scale = header.at("normalization").at("scale").get<double>();
   model.part_names = header.at("part_names").get<std::vector<std::string>>();
   model.training = training_from_json(header.at("training"));
@@ -237,9 +246,9 @@ core::CategoryModel read_model(const std::filesystem::path& path) {
   const auto blob_bytes = header.value("blob_bytes", std::uint64_t{0});
   const auto start = static_cast<std::uint64_t>(in.tellg());
   if (start + blob_bytes != file_size)
-    throw InputError("model file " + file + " is " + (start + blob_bytes > file_size ? "truncated" : "damaged") +
-                     ": expected " + std::to_string(start + blob_bytes) + " bytes, found " +
-                     std::to_string(file_size));
+    throw InputError("model file " + file + " is " +
+                     (start + blob_bytes > file_size ? "truncated" : "damaged") + ": expected " +
+                     std::to_string(start + blob_bytes) + " bytes, found " + std::to_string(file_size));
   std::string blob(blob_bytes, '\0');
   in.read(blob.data(), static_cast<std::streamsize>(blob_bytes));
   const ArrayReader arrays(header.at("arrays"), std::move(blob), file);

@@ -10,10 +10,10 @@ namespace {
 
 std::string normalised_type(const std::string& type, const std::string& file) {
   static const std::map<std::string, std::string> aliases = {
-      {"char", "char"},   {"int8", "char"},    {"uchar", "uchar"}, {"uint8", "uchar"},   {"short", "short"},
-      {"int16", "short"}, {"ushort", "ushort"}, {"uint16", "ushort"}, {"int", "int"},    {"int32", "int"},
-      {"uint", "uint"},   {"uint32", "uint"},  {"float", "float"}, {"float32", "float"}, {"double", "double"},
-      {"float64", "double"}};
+      {"char", "char"},   {"int8", "char"},     {"uchar", "uchar"},   {"uint8", "uchar"},
+      {"short", "short"}, {"int16", "short"},   {"ushort", "ushort"}, {"uint16", "ushort"},
+      {"int", "int"},     {"int32", "int"},     {"uint", "uint"},     {"uint32", "uint"},
+      {"float", "float"}, {"float32", "float"}, {"double", "double"}, {"float64", "double"}};
   const auto found = aliases.find(type);
   if (found == aliases.end()) throw InputError(file + ": unknown PLY property type '" + type + "'");
   return found->second;
@@ -36,7 +36,8 @@ std::size_t ply_type_size(const std::string& type) {
 
 PlyHeader read_ply_header(std::istream& in, const std::string& file) {
   std::string line;
-  if (!std::getline(in, line) || line.rfind("ply", 0) != 0) throw InputError(file + " is not a PLY file (no 'ply' magic)");
+  if (!std::getline(in, line) || line.rfind("ply", 0) != 0)
+    throw InputError(file + " is not a PLY file (no 'ply' magic)");
   PlyHeader header;
   bool has_format = false;
   while (std::getline(in, line)) {
@@ -51,10 +52,14 @@ PlyHeader read_ply_header(std::istream& in, const std::string& file) {
     if (keyword == "format") {
       std::string format;
       words >> format;
-      if (format == "ascii") header.format = PlyHeader::Format::ascii;
-      else if (format == "binary_little_endian") header.format = PlyHeader::Format::binary_little_endian;
-      else if (format == "binary_big_endian") header.format = PlyHeader::Format::binary_big_endian;
-      else throw InputError(file + ": unknown PLY format '" + format + "'");
+      if (format == "ascii")
+        header.format = PlyHeader::Format::ascii;
+      else if (format == "binary_little_endian")
+        header.format = PlyHeader::Format::binary_little_endian;
+      else if (format == "binary_big_endian")
+        header.format = PlyHeader::Format::binary_big_endian;
+      else
+        throw InputError(file + ": unknown PLY format '" + format + "'");
       has_format = true;
     } else if (keyword == "element") {
       PlyElement element;

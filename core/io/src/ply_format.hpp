@@ -10,7 +10,7 @@ namespace partreg::io::detail {
 
 struct PlyProperty {
   std::string name;
-  std::string type;   ///< scalar type, normalised to char/uchar/short/ushort/int/uint/float/double
+  std::string type;  ///< scalar type, normalised to char/uchar/short/ushort/int/uint/float/double
   bool is_list = false;
 };
 

@@ -15,23 +15,23 @@ namespace partreg::core {
 
 /// How a category model was trained (kept in the model file so results can be reproduced).
 struct TrainingRecord {
-  std::vector<std::string> instances;   ///< training instance names, in training order
-  std::string canonical;                ///< name of the instance chosen as canonical
-  std::string canonical_choice;         ///< "given" or how it was chosen automatically
-  int canonical_points = 0;             ///< M
-  double beta = 0.0;                    ///< CPD kernel width (normalised units)
-  double lambda = 0.0;                  ///< CPD smoothness weight (unitless)
-  double outlier_weight = 0.0;          ///< CPD w
-  int latent_dimensions = 0;            ///< requested q (a space may hold fewer: q <= K - 1)
-  std::uint64_t seed = 0;               ///< sampling seed
+  std::vector<std::string> instances;  ///< training instance names, in training order
+  std::string canonical;               ///< name of the instance chosen as canonical
+  std::string canonical_choice;        ///< "given" or how it was chosen automatically
+  int canonical_points = 0;            ///< M
+  double beta = 0.0;                   ///< CPD kernel width (normalised units)
+  double lambda = 0.0;                 ///< CPD smoothness weight (unitless)
+  double outlier_weight = 0.0;         ///< CPD w
+  int latent_dimensions = 0;           ///< requested q (a space may hold fewer: q <= K - 1)
+  std::uint64_t seed = 0;              ///< sampling seed
 };
 
 /// A trained category model. All geometry is in normalised units: data = normalization.undo(normalised).
 struct CategoryModel {
-  std::string category;                 ///< e.g. "kettles"
-  Normalization normalization;          ///< category data frame <-> normalised units
-  Points canonical;                     ///< M canonical points (normalised units)
-  Eigen::VectorXi canonical_part;       ///< part index per canonical point (all 0 for a category without parts)
+  std::string category;            ///< e.g. "kettles"
+  Normalization normalization;     ///< category data frame <-> normalised units
+  Points canonical;                ///< M canonical points (normalised units)
+  Eigen::VectorXi canonical_part;  ///< part index per canonical point (all 0 for a category without parts)
   std::vector<std::string> part_names;  ///< index -> name; empty for a category without parts
   Mesh canonical_mesh;                  ///< canonical surface (normalised units); may be empty for cloud data
   Eigen::VectorXi mesh_vertex_part;     ///< part index per mesh vertex (empty with an empty mesh)

@@ -24,10 +24,10 @@ const char* to_string(CpdStopReason reason);
 struct RigidCpdSettings {
   double outlier_weight = 0.1;  ///< w in [0, 1): share of the target explained by uniform noise
   bool estimate_scale = false;  ///< also estimate a uniform scale s
-  double tolerance = 1e-6;      ///< stop when the negative log-likelihood changes by less than this, relatively
-  int max_iterations = 150;     ///< EM iteration cap
-  bool normalize = true;        ///< register in the target's normalised frame (see file comment)
-  int threads = 0;              ///< E-step threads; 0 = all cores
+  double tolerance = 1e-6;   ///< stop when the negative log-likelihood changes by less than this, relatively
+  int max_iterations = 150;  ///< EM iteration cap
+  bool normalize = true;     ///< register in the target's normalised frame (see file comment)
+  int threads = 0;           ///< E-step threads; 0 = all cores
 };
 
 /// Rigid result: target ~ scale * rotation * source + translation.
@@ -35,8 +35,8 @@ struct RigidCpdResult {
   Eigen::Matrix3d rotation = Eigen::Matrix3d::Identity();
   Eigen::Vector3d translation = Eigen::Vector3d::Zero();  ///< caller's units
   double scale = 1.0;
-  Points moved;              ///< source after registration, in the target's frame
-  double sigma2 = 0.0;       ///< final Gaussian variance (normalised units squared when normalize)
+  Points moved;         ///< source after registration, in the target's frame
+  double sigma2 = 0.0;  ///< final Gaussian variance (normalised units squared when normalize)
   int iterations = 0;
   CpdStopReason stop_reason = CpdStopReason::max_iterations;
   double seconds = 0.0;
@@ -77,22 +77,23 @@ struct NonrigidCpdSettings {
   int max_iterations = 150;     ///< EM iteration cap
   bool normalize = true;        ///< register in the target's normalised frame
   Solver solver = Solver::automatic;
-  int kernel_rank = 0;          ///< eigenpairs of G kept by the fast solver; 0 = chosen from the spectrum
-  double truncation = 1e-8;     ///< fast E-step ignores kernel values below this once the neighbourhoods are small
-  int threads = 0;              ///< E-step threads; 0 = all cores
+  int kernel_rank = 0;  ///< eigenpairs of G kept by the fast solver; 0 = chosen from the spectrum
+  double truncation =
+      1e-8;         ///< fast E-step ignores kernel values below this once the neighbourhoods are small
+  int threads = 0;  ///< E-step threads; 0 = all cores
 };
 
 /// Non-rigid result: moved = source + G(source, source) W, with W in CPD's working frame.
 struct NonrigidCpdResult {
-  Points moved;                ///< source after registration, in the caller's frame
-  Points weights;              ///< W (M x 3) in the working frame (normalised when normalize was on)
-  double beta = 0.0;           ///< kernel width used, working-frame units
-  Points source;               ///< the source points, caller's frame
-  Normalization normalization; ///< caller's frame -> working frame (identity when normalize was off)
-  double sigma2 = 0.0;         ///< final variance, working-frame units squared
+  Points moved;                 ///< source after registration, in the caller's frame
+  Points weights;               ///< W (M x 3) in the working frame (normalised when normalize was on)
+  double beta = 0.0;            ///< kernel width used, working-frame units
+  Points source;                ///< the source points, caller's frame
+  Normalization normalization;  ///< caller's frame -> working frame (identity when normalize was off)
+  double sigma2 = 0.0;          ///< final variance, working-frame units squared
   int iterations = 0;
   CpdStopReason stop_reason = CpdStopReason::max_iterations;
-  int kernel_rank = 0;         ///< eigenpairs used (0 for the exact solver)
+  int kernel_rank = 0;  ///< eigenpairs used (0 for the exact solver)
   double seconds = 0.0;
   /// The learned displacement v(z) = sum_m G(z, c_m) w_m at any points z (caller's frame in and out).
   Points displacement_at(const Points& z) const;
@@ -100,8 +101,10 @@ struct NonrigidCpdResult {
   Points apply(const Points& z) const { return z + displacement_at(z); }
 };
 
-RigidCpdResult register_rigid(const Points& source, const Points& target, const RigidCpdSettings& settings = {});
-AffineCpdResult register_affine(const Points& source, const Points& target, const AffineCpdSettings& settings = {});
+RigidCpdResult register_rigid(const Points& source, const Points& target,
+                              const RigidCpdSettings& settings = {});
+AffineCpdResult register_affine(const Points& source, const Points& target,
+                                const AffineCpdSettings& settings = {});
 NonrigidCpdResult register_nonrigid(const Points& source, const Points& target,
                                     const NonrigidCpdSettings& settings = {});
 

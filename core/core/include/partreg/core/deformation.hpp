@@ -23,7 +23,8 @@ struct Frame {
 
 /// Moves points given in the canonical data frame into the observed frame as the registration moved the
 /// canonical.
-Points deform_points(const CategoryModel& model, const RegistrationResult& result, const Points& canonical_points);
+Points deform_points(const CategoryModel& model, const RegistrationResult& result,
+                     const Points& canonical_points);
 
 /// The canonical mesh deformed into the observed frame (same faces).
 Mesh deform_mesh(const CategoryModel& model, const RegistrationResult& result);

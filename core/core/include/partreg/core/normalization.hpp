@@ -17,8 +17,8 @@ struct Normalization {
   /// Throws InputError for an empty set, non-finite points or a zero-size box.
   static Normalization fit(const Points& reference);
 
-  Points apply(const Points& data_points) const;          ///< data -> normalised
-  Points undo(const Points& normalised_points) const;     ///< normalised -> data
+  Points apply(const Points& data_points) const;       ///< data -> normalised
+  Points undo(const Points& normalised_points) const;  ///< normalised -> data
   double to_normalised(double data_length) const { return data_length / scale; }
   double to_data(double normalised_length) const { return normalised_length * scale; }
 };

@@ -13,7 +13,7 @@ int default_thread_count();
 
 /// Calls body(begin, end) on contiguous chunks covering [0, count), on up to `threads` threads
 /// (0 = default_thread_count()). Small ranges run on the calling thread. Exceptions propagate.
-void parallel_for(Eigen::Index count, const std::function<void(Eigen::Index, Eigen::Index)>& body, int threads = 0,
-                  Eigen::Index minimum_chunk = 64);
+void parallel_for(Eigen::Index count, const std::function<void(Eigen::Index, Eigen::Index)>& body,
+                  int threads = 0, Eigen::Index minimum_chunk = 64);
 
 }  // namespace partreg::core

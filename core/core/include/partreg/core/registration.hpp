@@ -24,7 +24,8 @@ enum class Direction {
 };
 enum class Loss { squared, huber, cauchy, trimmed };
 
-Variant parse_variant(const std::string& name);  ///< "holistic" | "partwise" | "hol+part"; UsageError otherwise
+Variant parse_variant(
+    const std::string& name);  ///< "holistic" | "partwise" | "hol+part"; UsageError otherwise
 std::string to_string(Variant variant);
 Direction parse_direction(const std::string& name);  ///< "canonical" | "observed" | "symmetric"
 Loss parse_loss(const std::string& name);            ///< "squared" | "huber" | "cauchy" | "trimmed"
@@ -32,26 +33,29 @@ Loss parse_loss(const std::string& name);            ///< "squared" | "huber" | 
 /// Registration settings. Lengths are in normalised units (the model's canonical diagonal is 1).
 struct RegistrationSettings {
   Variant variant = Variant::holistic;
-  Direction direction = Direction::observed_to_canonical;  ///< measured best on partial views: docs/registration.md
+  Direction direction =
+      Direction::observed_to_canonical;  ///< measured best on partial views: docs/registration.md
   Loss loss = Loss::huber;
-  double loss_scale = 0.02;       ///< Huber/Cauchy scale (normalised length)
-  double trim_fraction = 0.1;     ///< trimmed loss: share of the worst correspondences dropped each step
-  double prior_weight = 1e-4;     ///< weight of the Gaussian prior sum_k x_k^2 / var_k against the data term
-  bool estimate_scale = false;    ///< also fit a uniform scale
-  std::optional<Eigen::Vector3d> viewpoint;  ///< observed frame, data units: only canonical points facing it count
-  int restarts = 1;               ///< initial rotations tried about the up axis (the lowest cost wins)
+  double loss_scale = 0.02;     ///< Huber/Cauchy scale (normalised length)
+  double trim_fraction = 0.1;   ///< trimmed loss: share of the worst correspondences dropped each step
+  double prior_weight = 1e-4;   ///< weight of the Gaussian prior sum_k x_k^2 / var_k against the data term
+  bool estimate_scale = false;  ///< also fit a uniform scale
+  std::optional<Eigen::Vector3d>
+      viewpoint;     ///< observed frame, data units: only canonical points facing it count
+  int restarts = 1;  ///< initial rotations tried about the up axis (the lowest cost wins)
   Eigen::Vector3d up = Eigen::Vector3d::UnitY();  ///< the category's up axis (canonical frame)
-  int outer_iterations = 25;      ///< correspondence refreshes
-  int inner_iterations = 4;       ///< Ceres iterations per refresh
-  double tolerance = 1e-5;        ///< stop when the cost changes by less than this, relatively
-  int observed_points = 2000;     ///< the observed cloud is farthest-point downsampled to this many points
+  int outer_iterations = 25;                      ///< correspondence refreshes
+  int inner_iterations = 4;                       ///< Ceres iterations per refresh
+  double tolerance = 1e-5;     ///< stop when the cost changes by less than this, relatively
+  int observed_points = 2000;  ///< the observed cloud is farthest-point downsampled to this many points
 };
 
 /// The fit of one space.
 struct SpaceFit {
   std::string space;
   Eigen::VectorXd latent;
-  Eigen::Matrix4d T_observed_canonical = Eigen::Matrix4d::Identity();  ///< canonical data frame -> observed frame
+  Eigen::Matrix4d T_observed_canonical =
+      Eigen::Matrix4d::Identity();  ///< canonical data frame -> observed frame
   double scale = 1.0;
   double cost = 0.0;
   int iterations = 0;
@@ -75,10 +79,10 @@ struct FitStatistics {
 
 struct RegistrationResult {
   Variant variant = Variant::holistic;
-  std::vector<SpaceFit> fits;       ///< holistic first where it ran, then the parts
-  Points deformed;                  ///< deformed canonical points in the observed frame (data units)
-  Eigen::VectorXi part;             ///< part per deformed point
-  std::vector<HistoryStep> history; ///< every outer step of every space, in order
+  std::vector<SpaceFit> fits;        ///< holistic first where it ran, then the parts
+  Points deformed;                   ///< deformed canonical points in the observed frame (data units)
+  Eigen::VectorXi part;              ///< part per deformed point
+  std::vector<HistoryStep> history;  ///< every outer step of every space, in order
   FitStatistics fit;
   double seconds = 0.0;
 };

@@ -18,15 +18,16 @@ namespace partreg::core {
 
 /// The learned space of one canonical point set (the whole object, or one part).
 struct ShapeSpace {
-  std::string name;               ///< "holistic", or the part's name
-  std::vector<int> point_indices; ///< rows of the holistic canonical this space deforms (all rows for holistic)
-  Points canonical;               ///< C: those canonical points (normalised units)
-  double beta = 0.0;              ///< width of the Gaussian kernel G(C, C) used in training (normalised units)
-  Eigen::VectorXd mean;           ///< mean of the vectorised training W (3M)
-  Eigen::MatrixXd basis;          ///< 3M x q weight fields W of the principal directions (G * basis = kernel_basis)
-  Eigen::VectorXd variances;      ///< variance of the training latents along each direction (descending)
-  double total_variance = 0.0;    ///< total variance of the training displacements (normalised length squared)
-  Eigen::VectorXd kernel_mean;    ///< vec(G * mean W): the canonical's mean displacement (3M, normalised units)
+  std::string name;  ///< "holistic", or the part's name
+  std::vector<int>
+      point_indices;      ///< rows of the holistic canonical this space deforms (all rows for holistic)
+  Points canonical;       ///< C: those canonical points (normalised units)
+  double beta = 0.0;      ///< width of the Gaussian kernel G(C, C) used in training (normalised units)
+  Eigen::VectorXd mean;   ///< mean of the vectorised training W (3M)
+  Eigen::MatrixXd basis;  ///< 3M x q weight fields W of the principal directions (G * basis = kernel_basis)
+  Eigen::VectorXd variances;    ///< variance of the training latents along each direction (descending)
+  double total_variance = 0.0;  ///< total variance of the training displacements (normalised length squared)
+  Eigen::VectorXd kernel_mean;  ///< vec(G * mean W): the canonical's mean displacement (3M, normalised units)
   /// Column k is vec(G * basis_k): displacement per unit of latent k (3M x q). Orthonormal, ordered by
   /// variance: PCA-EM runs on the displacements, where shape lives (see learn_shape_space).
   Eigen::MatrixXd kernel_basis;
@@ -48,20 +49,21 @@ struct ShapeSpace {
 /// PCA-EM (Roweis 1998) settings. The EM iterations find the principal subspace without forming the
 /// 3M x 3M covariance; an eigen-decomposition inside that subspace then orders and orthonormalises it.
 struct PcaEmSettings {
-  int dimensions = 5;          ///< q, the latent dimension; clamped to K - 1 for K training fields
-  int max_iterations = 500;    ///< EM iteration cap
-  double tolerance = 1e-10;    ///< stop when the subspace moves less than this (1 - |cos| of principal angles)
-  std::uint64_t seed = 1;      ///< seed of the random initial subspace
+  int dimensions = 5;        ///< q, the latent dimension; clamped to K - 1 for K training fields
+  int max_iterations = 500;  ///< EM iteration cap
+  double tolerance = 1e-10;  ///< stop when the subspace moves less than this (1 - |cos| of principal angles)
+  std::uint64_t seed = 1;    ///< seed of the random initial subspace
 };
 
 /// Principal subspace of the columns of `centred` (D x K, mean already removed) by PCA-EM.
 /// Returns the D x q orthonormal basis ordered by variance and writes the variances (divided by K - 1).
-Eigen::MatrixXd pca_em(const Eigen::MatrixXd& centred, const PcaEmSettings& settings, Eigen::VectorXd& variances);
+Eigen::MatrixXd pca_em(const Eigen::MatrixXd& centred, const PcaEmSettings& settings,
+                       Eigen::VectorXd& variances);
 
 /// Learns the space of the given training weight fields (each M x 3 for the canonical `canonical`).
 /// Throws InputError for fewer than two fields or fields whose size does not match the canonical.
-ShapeSpace learn_shape_space(const std::string& name, const std::vector<int>& point_indices, const Points& canonical,
-                             double beta, const std::vector<Points>& training_weights,
-                             const PcaEmSettings& settings = {});
+ShapeSpace learn_shape_space(const std::string& name, const std::vector<int>& point_indices,
+                             const Points& canonical, double beta,
+                             const std::vector<Points>& training_weights, const PcaEmSettings& settings = {});
 
 }  // namespace partreg::core

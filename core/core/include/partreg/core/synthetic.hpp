@@ -18,7 +18,8 @@ enum class SyntheticCategory { mug, drill, spray_bottle };
 /// "mug", "drill" or "spray_bottle"; UsageError listing those for anything else.
 SyntheticCategory parse_synthetic_category(const std::string& name);
 std::string to_string(SyntheticCategory category);
-/// Part names in part-index order: mug {body, handle}; drill {base, body, chuck}; spray_bottle {body, neck, trigger}.
+/// Part names in part-index order: mug {body, handle}; drill {base, body, chuck}; spray_bottle {body, neck,
+/// trigger}.
 std::vector<std::string> part_names(SyntheticCategory category);
 
 struct SyntheticPart {
@@ -27,15 +28,16 @@ struct SyntheticPart {
 };
 
 struct SyntheticInstance {
-  std::string name;                       ///< e.g. "mug_003"
-  std::vector<double> shape_parameters;   ///< the continuous parameters it was drawn from
-  std::vector<SyntheticPart> parts;       ///< in part_names() order
+  std::string name;                      ///< e.g. "mug_003"
+  std::vector<double> shape_parameters;  ///< the continuous parameters it was drawn from
+  std::vector<SyntheticPart> parts;      ///< in part_names() order
 };
 
 /// Instance `index` of a category: parameters drawn from a generator seeded with (seed, index).
 SyntheticInstance make_synthetic_instance(SyntheticCategory category, std::uint64_t seed, int index);
 /// `count` instances, named <category>_000, <category>_001, ...
-std::vector<SyntheticInstance> make_synthetic_category(SyntheticCategory category, int count, std::uint64_t seed);
+std::vector<SyntheticInstance> make_synthetic_category(SyntheticCategory category, int count,
+                                                       std::uint64_t seed);
 
 /// Ground-truth surface samples: the (u, v) set and part of each row depend only on (category, count, seed),
 /// never on the shape, so row i is the same semantic point on every instance.
@@ -48,7 +50,7 @@ SurfaceSamples sample_correspondences(SyntheticCategory category, const std::vec
                                       int count, std::uint64_t seed);
 
 /// A point of part `part` at (u, v) for the given shape.
-Eigen::Vector3d evaluate_surface(SyntheticCategory category, const std::vector<double>& shape_parameters, int part,
-                                 double u, double v);
+Eigen::Vector3d evaluate_surface(SyntheticCategory category, const std::vector<double>& shape_parameters,
+                                 int part, double u, double v);
 
 }  // namespace partreg::core

@@ -2,7 +2,8 @@
 /// \file
 /// Training a category (paper, section 3.1): choose a canonical instance, register it with non-rigid CPD to
 /// every other instance, propagate part labels through those registrations, and learn one holistic and one
-/// per-part shape space with PCA-EM. Inputs are plain point sets: reading dataset folders is partreg_io's job.
+/// per-part shape space with PCA-EM. Inputs are plain point sets: reading dataset folders is partreg_io's
+/// job.
 
 #include <functional>
 #include <map>
@@ -18,33 +19,34 @@ namespace partreg::core {
 /// One aligned training instance, in the category's data frame.
 struct TrainingInstance {
   std::string name;
-  Points points;          ///< a dense, roughly uniform sample of the surface (data units)
-  Eigen::VectorXi part;   ///< part index per point from the instance's own part files; empty if it has none
-  Mesh mesh;              ///< its surface (data units); may be empty for cloud data
+  Points points;         ///< a dense, roughly uniform sample of the surface (data units)
+  Eigen::VectorXi part;  ///< part index per point from the instance's own part files; empty if it has none
+  Mesh mesh;             ///< its surface (data units); may be empty for cloud data
   Eigen::VectorXi mesh_vertex_part;  ///< part per mesh vertex (empty if the mesh or the parts are absent)
 };
 
 /// Training settings. Lengths are in normalised units: the canonical's bounding-box diagonal is 1.
 struct TrainingSettings {
-  int canonical_points = 1000;      ///< M, canonical points kept by farthest-point sampling (clamped to what exists)
-  int target_points = 1500;         ///< instance points each CPD registers onto (farthest-point sampled)
-  int latent_dimensions = 5;        ///< q per space (clamped to K - 1 for K training instances)
-  double beta = 0.3;                ///< CPD kernel width (normalised length); see docs/training.md for the choice
-  double lambda = 3.0;              ///< CPD smoothness weight (unitless)
-  double outlier_weight = 0.05;     ///< CPD w: clean sampled surfaces have few outliers
-  int max_iterations = 150;         ///< CPD iteration cap per registration
+  int canonical_points =
+      1000;                  ///< M, canonical points kept by farthest-point sampling (clamped to what exists)
+  int target_points = 1500;  ///< instance points each CPD registers onto (farthest-point sampled)
+  int latent_dimensions = 5;  ///< q per space (clamped to K - 1 for K training instances)
+  double beta = 0.3;          ///< CPD kernel width (normalised length); see docs/training.md for the choice
+  double lambda = 3.0;        ///< CPD smoothness weight (unitless)
+  double outlier_weight = 0.05;          ///< CPD w: clean sampled surfaces have few outliers
+  int max_iterations = 150;              ///< CPD iteration cap per registration
   std::optional<std::string> canonical;  ///< instance name to use as canonical; automatic when absent
-  std::uint64_t seed = 1;           ///< PCA-EM seed
+  std::uint64_t seed = 1;                ///< PCA-EM seed
 };
 
 /// What training did, for logs and the closing report.
 struct TrainingReport {
   struct Registration {
     std::string instance;
-    std::string space;       ///< "holistic" or a part name
+    std::string space;  ///< "holistic" or a part name
     int iterations = 0;
     double seconds = 0.0;
-    double mean_fit = 0.0;   ///< mean distance from the registered canonical to the instance (normalised)
+    double mean_fit = 0.0;  ///< mean distance from the registered canonical to the instance (normalised)
   };
   std::vector<Registration> registrations;
   /// Per instance with its own parts: share of its points whose propagated label equals its own, per part
@@ -59,10 +61,12 @@ using ProgressCallback = std::function<void(const std::string&)>;
 
 /// The instance every other one is closest to on average (symmetric Chamfer distance of FPS samples):
 /// a cheap stand-in for "reached with least deformation" (see docs/training.md). Returns its index.
-std::size_t choose_canonical(const std::vector<TrainingInstance>& instances, std::string* explanation = nullptr);
+std::size_t choose_canonical(const std::vector<TrainingInstance>& instances,
+                             std::string* explanation = nullptr);
 
 /// Part labels for `points` taken from the nearest point of `labelled` (labels `labelled_part`).
-Eigen::VectorXi propagate_labels(const Points& labelled, const Eigen::VectorXi& labelled_part, const Points& points);
+Eigen::VectorXi propagate_labels(const Points& labelled, const Eigen::VectorXi& labelled_part,
+                                 const Points& points);
 
 /// Trains a category. `part_names` is empty for a category without parts. With parts, the canonical
 /// instance must carry its part labels; any other instance without its own labels gets them by

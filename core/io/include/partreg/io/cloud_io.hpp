@@ -32,7 +32,7 @@ CloudFile read_cloud_file(const std::filesystem::path& path);
 
 /// Writes a PLY cloud (binary little-endian by default) with normals when present and every attribute as an
 /// `int` or `float` vertex property. Atomic. Throws UsageError for attribute sizes that do not match.
-void write_cloud_ply(const std::filesystem::path& path, const core::Cloud& cloud, const PointAttributes& attributes = {},
-                     bool binary = true);
+void write_cloud_ply(const std::filesystem::path& path, const core::Cloud& cloud,
+                     const PointAttributes& attributes = {}, bool binary = true);
 
 }  // namespace partreg::io

@@ -23,10 +23,10 @@ struct DatasetOptions {
 
 /// A category read from disk.
 struct Dataset {
-  std::string name;                              ///< the folder's name
-  bool part_folders = false;                     ///< true for the one-subfolder-per-instance layout
-  std::vector<std::string> part_names;           ///< empty for a category without part files
-  std::vector<core::TrainingInstance> instances; ///< sorted by name
+  std::string name;                               ///< the folder's name
+  bool part_folders = false;                      ///< true for the one-subfolder-per-instance layout
+  std::vector<std::string> part_names;            ///< empty for a category without part files
+  std::vector<core::TrainingInstance> instances;  ///< sorted by name
 };
 
 /// Reads a dataset folder. Throws InputError naming the folder or file for an empty folder, a single
@@ -35,7 +35,8 @@ Dataset read_dataset(const std::filesystem::path& folder, const DatasetOptions& 
 
 /// Gives one instance parts from per-face labels of its mesh (a labels file made for it): the mesh is split
 /// by label and re-sampled like a part-folder instance. Throws InputError when the face count differs.
-void apply_face_labels(Dataset& dataset, const std::string& instance, const std::vector<std::string>& part_names,
-                       const Eigen::VectorXi& face_labels, const DatasetOptions& options = {});
+void apply_face_labels(Dataset& dataset, const std::string& instance,
+                       const std::vector<std::string>& part_names, const Eigen::VectorXi& face_labels,
+                       const DatasetOptions& options = {});
 
 }  // namespace partreg::io

@@ -18,11 +18,11 @@ inline constexpr int kLabelsFormatVersion = 1;
 /// Parts and one label per mesh face or per point (-1 = unlabelled).
 struct PartLabels {
   enum class Target { faces, points };
-  std::vector<std::string> names;                       ///< part index -> name (unique)
-  std::vector<std::array<std::uint8_t, 3>> colors;      ///< part index -> sRGB colour
+  std::vector<std::string> names;                   ///< part index -> name (unique)
+  std::vector<std::array<std::uint8_t, 3>> colors;  ///< part index -> sRGB colour
   Target target = Target::faces;
-  Eigen::VectorXi labels;                               ///< one per face or point
-  std::string source;                                   ///< file name of the mesh or cloud it was made for
+  Eigen::VectorXi labels;  ///< one per face or point
+  std::string source;      ///< file name of the mesh or cloud it was made for
 
   /// The index of part `name`, adding it (with the next palette colour) when new.
   int part_index(const std::string& name);

@@ -1,6 +1,7 @@
 #pragma once
 /// \file
-/// Triangle meshes: reading every format assimp reads (OBJ, PLY, STL, OFF, glTF/GLB, ...), writing OBJ and PLY.
+/// Triangle meshes: reading every format assimp reads (OBJ, PLY, STL, OFF, glTF/GLB, ...), writing OBJ and
+/// PLY.
 
 #include <Eigen/Core>
 #include <filesystem>
@@ -16,6 +17,7 @@ core::Mesh read_mesh(const std::filesystem::path& path);
 
 /// Writes .obj or .ply (by extension; UsageError otherwise), atomically. PLY gets an int `part` vertex
 /// property when `vertex_part` is given (one value per vertex).
-void write_mesh(const std::filesystem::path& path, const core::Mesh& mesh, const Eigen::VectorXi* vertex_part = nullptr);
+void write_mesh(const std::filesystem::path& path, const core::Mesh& mesh,
+                const Eigen::VectorXi* vertex_part = nullptr);
 
 }  // namespace partreg::io

@@ -22,8 +22,8 @@ inline constexpr int kModelFormatVersion = 1;
 /// Writes `model` to `path` atomically (a temporary file renamed into place).
 void write_model(const std::filesystem::path& path, const core::CategoryModel& model);
 
-/// Reads a model. Throws InputError with one clear line for a missing file, a file that is not a partreg model,
-/// another format version, a truncated file, or an array whose checksum does not match (corruption).
+/// Reads a model. Throws InputError with one clear line for a missing file, a file that is not a partreg
+/// model, another format version, a truncated file, or an array whose checksum does not match (corruption).
 core::CategoryModel read_model(const std::filesystem::path& path);
 
 }  // namespace partreg::io
