@@ -59,6 +59,7 @@ TEST_F(Cli, BadInputGetsOneLineAndTheRightExitCodeAndNoOutput) {
   write("nan.xyz", "nan nan nan\nnan nan nan\nnan nan nan\n");
   write("flat.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\n");
   write("cloud.abc", "0 0 0\n");
+  write("few.xyz", "0 0 0\n1 0 0\n0 1 0\n0 0 1\n");
   const std::string out = " --out " + path("out.ply");
   const std::vector<std::pair<std::string, int>> cases = {
       {"cpd " + path("missing.ply") + " " + mesh + out, 2},  // CLI11 checks existence: a usage error
@@ -67,6 +68,8 @@ TEST_F(Cli, BadInputGetsOneLineAndTheRightExitCodeAndNoOutput) {
       {"cpd " + path("nan.xyz") + " " + mesh + out, 1},
       {"cpd " + path("flat.obj") + " " + mesh + out, 1},
       {"cpd " + mesh + " " + mesh + " --beta -1" + out, 2},
+      {"cpd " + path("nan.xyz") + " " + mesh + " --points 50" + out, 1},
+      {"cpd " + path("few.xyz") + " " + mesh + " --points 50" + out, 1},
       {"cpd " + mesh + " " + mesh + " --mode bent" + out, 2},
       {"train " + path("nowhere") + " --out " + path("m.prm"), 1},
       {"info " + path("empty.ply"), 1},
@@ -80,7 +83,7 @@ TEST_F(Cli, BadInputGetsOneLineAndTheRightExitCodeAndNoOutput) {
   }
   for (const std::string& name : dir.entries())
     EXPECT_TRUE(name == "cube.obj" || name == "empty.ply" || name == "nan.xyz" || name == "flat.obj" ||
-                name == "cloud.abc")
+                name == "cloud.abc" || name == "few.xyz")
         << "left behind: " << name;
 }
 
@@ -98,6 +101,21 @@ TEST_F(Cli, SynthTrainInfoMakeAndDescribeAModel) {
   EXPECT_NE(info.output.find("\"explained\""), std::string::npos);
   // The synth output folder is not overwritten.
   EXPECT_EQ(run("synth mug --out " + path("mugs")).exit_code, 2);
+}
+
+TEST_F(Cli, TrainRefusesLabelsMadeForAnotherMesh) {
+  std::filesystem::create_directories(dir / "cubes");
+  for (const char* name : {"a", "b", "c"})
+    std::filesystem::copy_file(cube(), dir / "cubes" / (std::string(name) + ".obj"),
+                               std::filesystem::copy_options::overwrite_existing);
+  write("labels.json",
+        R"({"format": "partreg-labels", "version": 1, "source": "a.obj", "parts": [{"name": "body",
+      "color": [0, 0, 0]}, {"name": "lid", "color": [1, 1, 1]}], "target": "faces", "count": 3, "labels": [0, 1, 1]})");
+  const Outcome train =
+      run("train " + path("cubes") + " --labels " + path("labels.json") + " --out " + path("m.prm"));
+  EXPECT_EQ(train.exit_code, 1) << train.output;
+  EXPECT_NE(train.output.find("12 faces"), std::string::npos) << train.output;
+  EXPECT_FALSE(std::filesystem::exists(dir / "m.prm"));
 }
 
 TEST_F(Cli, TrainRefusesPartFoldersThatDisagreeAndWritesNoModel) {

@@ -97,6 +97,36 @@ TEST(SharedData, NonrigidCpdBringsOneDrillOntoAnother) {
   EXPECT_LT(after, 0.03 * core::bounding_box_diagonal(target));
 }
 
+TEST(SharedData, NonrigidCpdReachesASmoothlyDisplacedRealDrill) {
+  const auto path = shared_data("drills/drill_5.pcd");
+  PARTREG_REQUIRE_SHARED_DATA(path);
+  const core::Points source = io::read_cloud_file(path).cloud.points;
+  const double diagonal = core::bounding_box_diagonal(source);
+  // A smooth bend and bulge of about 5% of the diagonal, in normalised coordinates of the drill.
+  const core::Normalization frame = core::Normalization::fit(source);
+  core::Points normalised = frame.apply(source);
+  for (Eigen::Index i = 0; i < normalised.rows(); ++i) {
+    const double x = normalised(i, 0), y = normalised(i, 1), z = normalised(i, 2);
+    normalised.row(i) += Eigen::RowVector3d(0.15 * z, 0.18 * std::sin(2.0 * x), 0.24 * x * x + 0.09 * y);
+  }
+  const core::Points target = frame.undo(normalised);
+  core::NonrigidCpdSettings settings;
+  settings.beta = 0.5;
+  settings.lambda = 3.0;
+  settings.outlier_weight = 0.0;
+  settings.solver = core::NonrigidCpdSettings::Solver::exact;
+  const auto exact = core::register_nonrigid(source, target, settings);
+  settings.solver = core::NonrigidCpdSettings::Solver::fast;
+  const auto fast = core::register_nonrigid(source, target, settings);
+  const double error = testing::mean_row_distance(fast.moved, target) / diagonal;
+  std::cerr << "real drill: mean point error " << error << " of the diagonal (undeformed "
+            << testing::mean_row_distance(source, target) / diagonal << "), fast vs exact "
+            << testing::mean_row_distance(fast.moved, exact.moved) / diagonal << "\n";
+  EXPECT_LT(error, 0.01);
+  EXPECT_LT(testing::mean_row_distance(fast.moved, exact.moved), 0.005 * diagonal);
+  ASSERT_GT(testing::mean_row_distance(source, target), 0.02 * diagonal);  // the undeformed source would fail
+}
+
 TEST(SharedData, KettleLabelsPropagateToEveryOtherKettle) {
   const auto path = shared_data("kettles");
   PARTREG_REQUIRE_SHARED_DATA(path);

@@ -4,15 +4,23 @@
 #include <iostream>
 
 #include "partreg/core/errors.hpp"
+#include "partreg/core/sampling.hpp"
 #include "partreg/io/atomic_file.hpp"
 #include "partreg/io/geometry_io.hpp"
 
 namespace partreg::app {
 
-core::Points read_points_logged(const std::string& path, std::size_t mesh_samples, std::uint64_t seed) {
+core::Points read_points_logged(const std::string& path, std::size_t count, std::uint64_t seed,
+                                bool exact_count) {
   std::size_t dropped = 0;
   const bool is_mesh = io::is_mesh_file(path);
-  core::Cloud cloud = io::read_as_cloud(path, mesh_samples, seed, &dropped);
+  core::Cloud cloud = io::read_as_cloud(path, count, seed, &dropped);
+  if (exact_count && !is_mesh) {
+    if (static_cast<std::size_t>(cloud.points.rows()) < count)
+      throw InputError("asked for " + std::to_string(count) + " points but " + path + " has only " +
+                       std::to_string(cloud.points.rows()));
+    cloud.points = core::select_rows(cloud.points, core::farthest_point_indices(cloud.points, count));
+  }
   std::cerr << "read " << path << ": " << cloud.points.rows() << " points"
             << (is_mesh ? " sampled from the mesh surface" : "");
   if (dropped > 0) std::cerr << " (" << dropped << " NaN or infinite points dropped)";

@@ -12,8 +12,11 @@
 
 namespace partreg::app {
 
-/// Reads a cloud (NaN points dropped) or samples a mesh to `mesh_samples` points; logs what it did on stderr.
-core::Points read_points_logged(const std::string& path, std::size_t mesh_samples, std::uint64_t seed);
+/// Reads a cloud (NaN points dropped) or samples a mesh to `count` points; logs what it did on stderr. With
+/// `exact_count` a cloud is also brought to `count` points (farthest-point sampling), and one with fewer
+/// points is an InputError.
+core::Points read_points_logged(const std::string& path, std::size_t count, std::uint64_t seed,
+                                bool exact_count = false);
 
 /// Writes `report` (indented) to `path` atomically; to stdout when path is "-"; nowhere when path is empty.
 void write_json_or_stdout(const nlohmann::json& report, const std::string& path);

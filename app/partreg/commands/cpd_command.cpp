@@ -25,6 +25,7 @@ struct CpdOptions {
   core::NonrigidCpdSettings nonrigid;
   bool scale = false;
   bool exact = false;
+  bool exact_points = false;  ///< --points given: clouds are brought to that many points too
 };
 
 nlohmann::json common_json(const CpdOptions& options, double sigma2, int iterations,
@@ -89,8 +90,10 @@ Registered run_mode(const CpdOptions& options, const core::Points& source, const
 void run_cpd(const CpdOptions& options) {
   if (options.mode != "rigid" && options.mode != "affine" && options.mode != "nonrigid")
     throw UsageError("--mode must be rigid, affine or nonrigid, not '" + options.mode + "'");
-  const core::Points source = read_points_logged(options.source_path, options.points, options.seed);
-  const core::Points target = read_points_logged(options.target_path, options.points, options.seed + 1);
+  const core::Points source =
+      read_points_logged(options.source_path, options.points, options.seed, options.exact_points);
+  const core::Points target =
+      read_points_logged(options.target_path, options.points, options.seed + 1, options.exact_points);
   const Registered registered = run_mode(options, source, target);
   const auto& report = registered.report;
   std::cerr << "cpd " << options.mode << ": " << source.rows() << " -> " << target.rows() << " points, "
@@ -120,7 +123,11 @@ void add_cpd_command(CLI::App& app) {
   command->add_option("--out", options->out_path, "PLY file for the moved source points (target frame)")
       ->required();
   command->add_option("--json", options->json_path, "write the result as JSON here ('-' for stdout)");
-  command->add_option("--points", options->points, "points sampled from a mesh input")->capture_default_str();
+  command
+      ->add_option("--points", options->points,
+                   "points of each input: meshes are sampled, clouds farthest-point downsampled (default: "
+                   "clouds as they are, meshes 1000)")
+      ->capture_default_str();
   command->add_option("--seed", options->seed, "sampling seed")->capture_default_str();
   command
       ->add_option("--beta", options->nonrigid.beta, "kernel width, normalised units (target diagonal = 1)")
@@ -136,7 +143,10 @@ void add_cpd_command(CLI::App& app) {
   command->add_flag("--scale", options->scale, "rigid mode: estimate a uniform scale too");
   command->add_flag("--exact", options->exact,
                     "nonrigid mode: the exact solver (full kernel, no truncation)");
-  command->callback([options] { run_cpd(*options); });
+  command->callback([options, command] {
+    options->exact_points = command->count("--points") > 0;
+    run_cpd(*options);
+  });
 }
 
 }  // namespace partreg::app
