@@ -47,7 +47,7 @@ struct RegistrationSettings {
   int outer_iterations = 25;                      ///< correspondence refreshes
   int inner_iterations = 4;                       ///< Ceres iterations per refresh
   double tolerance = 1e-5;     ///< stop when the cost changes by less than this, relatively
-  int observed_points = 2000;  ///< the observed cloud is farthest-point downsampled to this many points
+  int observed_points = 2000;  ///< farthest-point subset of the observation matched each step (measured)
 };
 
 /// The fit of one space.
