@@ -168,3 +168,57 @@ TEST(Registration, RefusesBadObservations) {
 
 }  // namespace
 }  // namespace partreg::core
+
+namespace partreg::core {
+namespace {
+
+double surface_error(const RegistrationResult& result, const Points& truth) {
+  const KdTree tree(truth);
+  std::vector<int> index;
+  Eigen::VectorXd squared;
+  tree.nearest_all(result.deformed, index, squared);
+  return squared.mean() / (setup().model.normalization.scale * setup().model.normalization.scale);
+}
+
+TEST(Registration, AFarOffPoseIsFoundFromPrincipalAxesAndRestarts) {
+  Eigen::Matrix4d far = Eigen::Matrix4d::Identity();
+  far.topLeftCorner<3, 3>() = testing::rotation(2.5, {1.0, 0.3, 0.0});  // 143 degrees
+  const Points observed = transform(setup().held_out.points, far);
+  auto rotation_error = [&](const RegistrationResult& result) {
+    return testing::rotation_error_deg(result.fits.front().T_observed_canonical.topLeftCorner<3, 3>(),
+                                       far.topLeftCorner<3, 3>());
+  };
+  const RegistrationResult naive = register_observation(setup().model, observed, {});
+  RegistrationSettings aligned;
+  aligned.align_principal_axes = true;
+  aligned.restarts = 4;
+  const RegistrationResult result = register_observation(setup().model, observed, aligned);
+  std::cerr << "far-off pose: rotation error " << rotation_error(result)
+            << " degrees with alignment and restarts, " << rotation_error(naive) << " without; Eq. 5 "
+            << surface_error(result, observed) << "\n";
+  EXPECT_LT(rotation_error(result), 10.0);
+  EXPECT_LT(surface_error(result, observed), 1e-3);
+  ASSERT_GT(rotation_error(naive), 30.0);  // starting from the category frame alone does not get there
+}
+
+TEST(Registration, AViewpointHelpsOnAPartialView) {
+  // The half of the held-out mug facing -z, seen from a camera on the -z side.
+  const Points full = transform(setup().held_out.points, known_pose());
+  std::vector<int> rows;
+  const double middle = full.col(2).mean();
+  for (Eigen::Index i = 0; i < full.rows(); ++i)
+    if (full(i, 2) < middle) rows.push_back(static_cast<int>(i));
+  const Points partial = full(rows, Eigen::all);
+  RegistrationSettings settings;
+  settings.variant = Variant::hol_part;
+  settings.direction = Direction::canonical_to_observed;  // the direction that needs visibility most
+  const double without = surface_error(register_observation(setup().model, partial, settings), full);
+  settings.viewpoint = Eigen::Vector3d(0.0, 0.05, -0.5);
+  const double with = surface_error(register_observation(setup().model, partial, settings), full);
+  std::cerr << "partial view, Eq. 3 direction: Eq. 5 " << with << " with the viewpoint, " << without
+            << " without\n";
+  EXPECT_LT(with, without);
+}
+
+}  // namespace
+}  // namespace partreg::core

@@ -144,6 +144,8 @@ void add_register_command(CLI::App& app) {
   command->add_option("--direction", o->direction, "canonical | observed | symmetric")->capture_default_str();
   command->add_option("--loss", o->loss, "squared | huber | cauchy | trimmed")->capture_default_str();
   command->add_flag("--scale", o->settings.estimate_scale, "also fit a uniform scale");
+  command->add_flag("--align-axes", o->settings.align_principal_axes,
+                    "start from the rotations that align principal axes (for poses far off)");
   command->add_option("--truth", o->truth_path,
                       "ground-truth instance (cloud or mesh, observed frame): report Eq. 5 and Chamfer");
   command->add_option("--samples", o->mesh_samples, "points sampled from an observed mesh")

@@ -63,19 +63,45 @@ Points canonical_normals(const Points& points) {
 }
 
 // Initial poses: the category's frame turned about its up axis, centroids aligned.
-std::vector<Pose> initial_poses(const CategoryModel& model, const RegistrationSettings& settings) {
-  const Eigen::Vector3d canonical_centre = model.holistic()
-                                               .deformed(Eigen::VectorXd::Zero(model.holistic().dimensions()))
-                                               .colwise()
-                                               .mean()
-                                               .transpose();
+// Principal axes of a point set as the columns of a rotation, by decreasing spread.
+Eigen::Matrix3d principal_axes(const Points& points) {
+  const Points centred = points.rowwise() - points.colwise().mean();
+  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eigen(centred.transpose() * centred);
+  Eigen::Matrix3d axes = eigen.eigenvectors().rowwise().reverse();
+  if (axes.determinant() < 0.0) axes.col(2) = -axes.col(2);
+  return axes;
+}
+
+// Starting rotations: the category frame, or, with principal-axis alignment, the four proper rotations that
+// map the canonical's axes onto the observation's (the axes' signs are unknown).
+std::vector<Eigen::Matrix3d> base_rotations(const CategoryModel& model, const Observation& observation,
+                                            const RegistrationSettings& settings) {
+  if (!settings.align_principal_axes) return {Eigen::Matrix3d::Identity()};
+  const Eigen::Matrix3d canonical = principal_axes(model.canonical),
+                        observed = principal_axes(observation.points);
+  std::vector<Eigen::Matrix3d> rotations;
+  for (const Eigen::Vector3d signs : {Eigen::Vector3d(1, 1, 1), Eigen::Vector3d(-1, -1, 1),
+                                      Eigen::Vector3d(-1, 1, -1), Eigen::Vector3d(1, -1, -1)})
+    rotations.push_back(observed * signs.asDiagonal() * canonical.transpose());
+  return rotations;
+}
+
+// Initial poses: each base rotation, turned about the category's up axis `restarts` times, centroids aligned.
+std::vector<Pose> initial_poses(const CategoryModel& model, const Observation& observation,
+                                const RegistrationSettings& settings) {
+  const ShapeSpace& holistic = model.holistic();
+  const Eigen::Vector3d canonical_centre =
+      holistic.deformed(Eigen::VectorXd::Zero(holistic.dimensions())).colwise().mean().transpose();
   std::vector<Pose> poses;
-  for (int k = 0; k < std::max(1, settings.restarts); ++k) {
-    Pose pose;
-    pose.rotation =
-        Eigen::AngleAxisd(2.0 * M_PI * k / std::max(1, settings.restarts), settings.up.normalized());
-    pose.translation = -(pose.rotation * canonical_centre);
-    poses.push_back(pose);
+  const int restarts = std::max(1, settings.restarts);
+  for (const Eigen::Matrix3d& base : base_rotations(model, observation, settings)) {
+    for (int k = 0; k < restarts; ++k) {
+      Pose pose;
+      pose.rotation =
+          Eigen::Quaterniond(base * Eigen::AngleAxisd(2.0 * M_PI * k / restarts, settings.up.normalized()));
+      pose.translation = -(pose.rotation * canonical_centre);
+      poses.push_back(pose);
+    }
   }
   return poses;
 }
@@ -200,7 +226,7 @@ RegistrationResult register_observation(const CategoryModel& model, const Points
   Eigen::Vector3d centroid;
   const Observation observation = prepare_observation(model, observed, settings, centroid);
   const Points normals = settings.viewpoint ? canonical_normals(model.canonical) : Points();
-  const std::vector<Pose> poses = initial_poses(model, settings);
+  const std::vector<Pose> poses = initial_poses(model, observation, settings);
 
   RegistrationResult result;
   result.variant = settings.variant;

@@ -41,8 +41,9 @@ struct RegistrationSettings {
   double prior_weight = 1e-4;   ///< weight of the Gaussian prior sum_k x_k^2 / var_k against the data term
   bool estimate_scale = false;  ///< also fit a uniform scale
   std::optional<Eigen::Vector3d>
-      viewpoint;     ///< observed frame, data units: only canonical points facing it count
-  int restarts = 1;  ///< initial rotations tried about the up axis (the lowest cost wins)
+      viewpoint;                      ///< observed frame, data units: only canonical points facing it count
+  bool align_principal_axes = false;  ///< start from the 4 rotations aligning principal axes (poses far off)
+  int restarts = 1;                   ///< initial rotations tried about the up axis (the lowest cost wins)
   Eigen::Vector3d up = Eigen::Vector3d::UnitY();  ///< the category's up axis (canonical frame)
   int outer_iterations = 25;                      ///< correspondence refreshes
   int inner_iterations = 4;                       ///< Ceres iterations per refresh
