@@ -1,0 +1,221 @@
+// The renderer through OSMesa: known scenes at a fixed size and camera against the PNG baselines in
+// tests/baselines (see image_baseline.hpp for the tolerance and where failures are written), and the
+// failures that must come out as one clear line.
+#include <gtest/gtest.h>
+
+#include "image_baseline.hpp"
+#include "partreg/core/errors.hpp"
+#include "partreg/render/headless.hpp"
+#include "render_scenes.hpp"
+#include "support/temp_dir.hpp"
+
+namespace partreg::render {
+namespace {
+
+using testing::expect_matches_baseline;
+
+constexpr int kWidth = 320, kHeight = 240;
+
+RenderSettings small(Background background = Background::white) {
+  RenderSettings settings;
+  settings.width = kWidth;
+  settings.height = kHeight;
+  settings.background = background;
+  return settings;
+}
+
+Scene mug_scene() {
+  Eigen::VectorXi part;
+  PointSet mug;
+  mug.positions = testing::mug_points(part);
+  mug.colors = part_colors(part);
+  Scene scene;
+  scene.point_sets.push_back(mug);
+  return scene;
+}
+
+// Share of pixels that are not the background.
+double covered_fraction(const Image& image, Rgba8 background = {255, 255, 255, 255}) {
+  std::size_t covered = 0;
+  for (int y = 0; y < image.height; ++y)
+    for (int x = 0; x < image.width; ++x)
+      if (!std::equal(background.begin(), background.end(), image.pixel(x, y))) ++covered;
+  return static_cast<double>(covered) / (image.width * image.height);
+}
+
+TEST(Renderer, SplatsColouredByPartFromEachNamedView) {
+  HeadlessRenderer renderer(small());
+  const Scene scene = mug_scene();
+  for (const char* view : {"iso", "front", "side", "top"}) {
+    const Image image = renderer.render(scene, parse_view(view));
+    EXPECT_GT(covered_fraction(image), 0.05) << view;
+    expect_matches_baseline(image, std::string("splats_mug_parts_") + view);
+  }
+}
+
+TEST(Renderer, BaselineComparisonCatchesAWrongPicture) {
+  // The tolerance that passes the tests above must fail a picture of the wrong view or the wrong colours.
+  HeadlessRenderer renderer(small());
+  const Image front = read_png(testing::baseline_path("splats_mug_parts_front"));
+  EXPECT_GT(testing::bad_pixel_fraction(renderer.render(mug_scene(), View::iso), front, 24), 0.05);
+  Scene grey = mug_scene();
+  grey.point_sets[0].colors.resize(0, 3);
+  EXPECT_GT(testing::bad_pixel_fraction(renderer.render(grey, View::front), front, 24), 0.05);
+}
+
+TEST(Renderer, ExplicitCameraLooksFromWhereItIsTold) {
+  HeadlessRenderer renderer(small());
+  Camera camera;
+  camera.eye = Eigen::Vector3d(0.0, -2.5, 2.5);  // from below the front: the bottom disc shows
+  camera.target = Eigen::Vector3d::Zero();
+  camera.up = Eigen::Vector3d::UnitY();
+  expect_matches_baseline(renderer.render(mug_scene(), camera), "splats_mug_parts_from_below");
+}
+
+TEST(Renderer, SmoothMeshWithVertexColours) {
+  HeadlessRenderer renderer(small());
+  MeshItem sphere;
+  sphere.mesh = testing::uv_sphere(1.0, 24, 48);
+  Eigen::VectorXi part(sphere.mesh.vertices.rows());
+  for (Eigen::Index i = 0; i < part.size(); ++i) part[i] = sphere.mesh.vertices(i, 1) > 0.0 ? 0 : 1;
+  sphere.vertex_colors = part_colors(part);
+  Scene scene;
+  scene.meshes.push_back(sphere);
+  expect_matches_baseline(renderer.render(scene, View::front), "mesh_sphere_smooth_two_colours_front");
+}
+
+TEST(Renderer, FlatMeshWithWireframe) {
+  HeadlessRenderer renderer(small());
+  MeshItem sphere;
+  sphere.mesh = testing::uv_sphere(1.0, 6, 10);
+  sphere.shading = Shading::flat;
+  sphere.wireframe = true;
+  sphere.color = part_color(2);
+  Scene scene;
+  scene.meshes.push_back(sphere);
+  expect_matches_baseline(renderer.render(scene, View::iso), "mesh_sphere_flat_wireframe_iso");
+}
+
+TEST(Renderer, OpenMeshIsLitInsideAndOut) {
+  HeadlessRenderer renderer(small());
+  MeshItem cylinder;
+  cylinder.mesh = testing::open_cylinder(0.5, 1.0, 64);
+  cylinder.color = part_color(1);
+  Scene scene;
+  scene.meshes.push_back(cylinder);
+  Camera camera;
+  camera.eye = Eigen::Vector3d(0.0, 2.4, 1.4);  // steeply from above the front: most of the inside shows
+  const Image image = renderer.render(scene, camera);
+  expect_matches_baseline(image, "mesh_open_cylinder_two_sided_from_above");
+  // The inner wall (seen through the open top, just above the centre) is lit, not black.
+  const std::uint8_t* inside = image.pixel(kWidth / 2, kHeight / 2 - 10);
+  EXPECT_GT(inside[0] + inside[1] + inside[2], 3 * 60);
+}
+
+TEST(Renderer, TriadAndCorrespondenceLines) {
+  HeadlessRenderer renderer(small());
+  core::Points from(8, 3), to(8, 3);
+  for (int i = 0; i < 8; ++i) {
+    from.row(i) << -1.0, 0.25 * i - 0.9, 0.0;
+    to.row(i) << 1.0, 0.2 * i - 0.6, 0.3;
+  }
+  Scene scene;
+  scene.line_sets.push_back(make_correspondences(from, to, Color(0.4f, 0.4f, 0.4f), 1.5f));
+  scene.line_sets.push_back(
+      make_triad(Eigen::Vector3d(0.0, -0.9, 0.0), Eigen::Matrix3d::Identity(), 0.6, 4.0f));
+  PointSet ends;
+  ends.positions.resize(16, 3);
+  ends.positions << from, to;
+  ends.color = observed_color();
+  ends.radius = 0.04;
+  scene.point_sets.push_back(ends);
+  expect_matches_baseline(renderer.render(scene, View::front), "lines_triad_correspondences_front");
+}
+
+TEST(Renderer, TransparentBackground) {
+  HeadlessRenderer renderer(small(Background::transparent));
+  MeshItem sphere;
+  sphere.mesh = testing::uv_sphere(1.0, 24, 48);
+  sphere.color = part_color(0);
+  Scene scene;
+  scene.meshes.push_back(sphere);
+  const Image image = renderer.render(scene, View::front);
+  EXPECT_EQ(image.pixel(0, 0)[3], 0);
+  EXPECT_EQ(image.pixel(kWidth / 2, kHeight / 2)[3], 255);
+  expect_matches_baseline(image, "mesh_sphere_transparent_background");
+}
+
+TEST(Renderer, AntialiasingSoftensEdges) {
+  // On a transparent background a silhouette without multisampling is all-or-nothing in alpha; with it, the
+  // rim pixels are partly covered.
+  MeshItem sphere;
+  sphere.mesh = testing::uv_sphere(1.0, 24, 48);
+  Scene scene;
+  scene.meshes.push_back(sphere);
+  const auto partly_covered = [&](int samples) {
+    RenderSettings settings = small(Background::transparent);
+    settings.samples = samples;
+    HeadlessRenderer renderer(settings);
+    const Image image = renderer.render(scene, View::front);
+    int count = 0;
+    for (std::size_t i = 3; i < image.rgba.size(); i += 4) count += image.rgba[i] > 0 && image.rgba[i] < 255;
+    return count;
+  };
+  EXPECT_EQ(partly_covered(1), 0);
+  EXPECT_GT(partly_covered(4), 100);
+}
+
+TEST(Renderer, EmptySceneIsBlankWithAWarning) {
+  HeadlessRenderer renderer(small());
+  ::testing::internal::CaptureStderr();
+  const Image image = renderer.render(Scene(), View::iso);
+  const std::string warning = ::testing::internal::GetCapturedStderr();
+  EXPECT_NE(warning.find("warning"), std::string::npos);
+  EXPECT_EQ(covered_fraction(image), 0.0);
+}
+
+TEST(Renderer, ShaderThatDoesNotCompileIsOneClearLine) {
+  OsMesaContext context;
+  try {
+    compile_program("broken", "void main() { gl_Position = vec4(0.0); }", "",
+                    "out vec4 colour;\nvoid main() { colour = undefined_thing; }");
+    FAIL() << "a broken shader compiled";
+  } catch (const InputError& error) {
+    const std::string what = error.what();
+    EXPECT_NE(what.find("shader broken (fragment) does not compile"), std::string::npos) << what;
+    EXPECT_EQ(what.find('\n'), std::string::npos) << what;
+  }
+}
+
+TEST(Renderer, ImageSizeOutsideTheLimitsIsAUsageError) {
+  RenderSettings settings = small();
+  settings.width = 0;
+  EXPECT_THROW(HeadlessRenderer{settings}, UsageError);
+}
+
+TEST(Renderer, UnwritableImageIsAnInputError) {
+  const testing::TempDir folder;
+  const Image image(4, 4);
+  try {
+    write_png(folder / "missing" / "out.png", image);
+    FAIL() << "wrote into a missing folder";
+  } catch (const InputError& error) {
+    EXPECT_NE(std::string(error.what()).find("cannot write"), std::string::npos) << error.what();
+  }
+  write_png(folder / "out.png", image);
+  EXPECT_EQ(folder.entries(), std::vector<std::string>{"out.png"});  // nothing half-written beside it
+}
+
+TEST(Renderer, PngRoundTrip) {
+  const testing::TempDir folder;
+  Image image(3, 2, {10, 20, 30, 255});
+  image.pixel(2, 1)[3] = 0;
+  write_png(folder / "round.png", image);
+  const Image back = read_png(folder / "round.png");
+  EXPECT_EQ(back.width, 3);
+  EXPECT_EQ(back.height, 2);
+  EXPECT_EQ(back.rgba, image.rgba);
+}
+
+}  // namespace
+}  // namespace partreg::render

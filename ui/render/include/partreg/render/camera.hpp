@@ -1,0 +1,72 @@
+#pragma once
+/// \file
+/// Cameras: an explicit eye/target/up camera, an orbit camera around a target, and the named views that
+/// fit a scene's bounds. The category frame has +Y up (as registration assumes); named views look at it from
+/// +Z (front), +X (side), +Y (top) or from above the front-right corner (iso).
+
+#include <Eigen/Core>
+#include <limits>
+#include <string>
+
+#include "partreg/core/types.hpp"
+
+namespace partreg::render {
+
+/// An axis-aligned box; empty until something is added.
+struct Bounds {
+  Eigen::Vector3d min = Eigen::Vector3d::Constant(std::numeric_limits<double>::infinity());
+  Eigen::Vector3d max = Eigen::Vector3d::Constant(-std::numeric_limits<double>::infinity());
+
+  bool empty() const { return !(min.array() <= max.array()).all(); }
+  void extend(const Eigen::Vector3d& point);
+  void extend(const core::Points& points);  ///< non-finite points are skipped
+  void extend(const Bounds& other);
+  Eigen::Vector3d centre() const { return 0.5 * (min + max); }
+  double diagonal() const { return empty() ? 0.0 : (max - min).norm(); }
+};
+
+enum class View { front, side, top, iso };
+
+/// "front" | "side" | "top" | "iso"; UsageError listing them otherwise.
+View parse_view(const std::string& name);
+
+/// A perspective camera given by where it is, what it looks at and which way is up (scene units).
+struct Camera {
+  Eigen::Vector3d eye = Eigen::Vector3d(0.0, 0.0, 3.0);
+  Eigen::Vector3d target = Eigen::Vector3d::Zero();
+  Eigen::Vector3d up = Eigen::Vector3d::UnitY();
+  double fov_y_deg = 30.0;  ///< vertical field of view (degrees)
+
+  /// World -> view transform (the camera looks down its -z axis). UsageError when eye == target or up is
+  /// parallel to the viewing direction.
+  Eigen::Matrix4f view_matrix() const;
+  /// Perspective projection for a width/height `aspect` and clip distances (scene units, near > 0).
+  Eigen::Matrix4f projection_matrix(double aspect, double near, double far) const;
+  /// The camera's right direction (unit) in scene coordinates.
+  Eigen::Vector3d right() const;
+};
+
+/// An orbit camera: a target, a distance and two angles; what the window's mouse turns.
+struct OrbitCamera {
+  Eigen::Vector3d target = Eigen::Vector3d::Zero();
+  double distance = 3.0;        ///< eye to target (scene units)
+  double azimuth_deg = 45.0;    ///< about +Y, 0 = looking from +Z, 90 = from +X
+  double elevation_deg = 30.0;  ///< above the horizontal plane, in [-90, 90] (90 = from straight above)
+  double fov_y_deg = 30.0;      ///< vertical field of view (degrees)
+
+  /// The camera; its up vector is the orbit's, so views from straight above keep -Z (the back) up.
+  Camera camera() const;
+};
+
+/// The orbit camera of a named view at unit distance around the origin.
+OrbitCamera named_orbit(View view);
+
+/// A camera of `view` that frames `bounds` (its bounding sphere fits the narrower field of view, with
+/// `margin` to spare) for an image of width/height `aspect`. An empty box gets the unit box.
+Camera fit_camera(const Bounds& bounds, View view, double aspect, double margin = 1.05,
+                  double fov_y_deg = 30.0);
+
+/// Near and far clip distances that hold all of `bounds` seen from `camera`.
+Eigen::Vector2d clip_range(const Camera& camera, const Bounds& bounds);
+
+}  // namespace partreg::render

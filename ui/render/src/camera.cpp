@@ -1,0 +1,147 @@
+#include "partreg/render/camera.hpp"
+
+#include <Eigen/Geometry>
+#include <algorithm>
+#include <cmath>
+
+#include "partreg/core/errors.hpp"
+
+namespace partreg::render {
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+double radians(double degrees) { return degrees * kPi / 180.0; }
+
+}  // namespace
+
+void Bounds::extend(const Eigen::Vector3d& point) {
+  if (!point.allFinite()) return;
+  min = min.cwiseMin(point);
+  max = max.cwiseMax(point);
+}
+
+void Bounds::extend(const core::Points& points) {
+  for (Eigen::Index i = 0; i < points.rows(); ++i) extend(Eigen::Vector3d(points.row(i).transpose()));
+}
+
+void Bounds::extend(const Bounds& other) {
+  if (other.empty()) return;
+  extend(other.min);
+  extend(other.max);
+}
+
+View parse_view(const std::string& name) {
+  if (name == "front") return View::front;
+  if (name == "side") return View::side;
+  if (name == "top") return View::top;
+  if (name == "iso") return View::iso;
+  throw UsageError("unknown view '" + name + "' (front | side | top | iso)");
+}
+
+Eigen::Matrix4f Camera::view_matrix() const {
+  const Eigen::Vector3d backward = eye - target;
+  if (!(backward.norm() > 0.0)) throw UsageError("the camera's eye and target coincide");
+  const Eigen::Vector3d z = backward.normalized();
+  const Eigen::Vector3d x = up.cross(z);
+  if (!(x.norm() > 1e-9 * up.norm())) throw UsageError("the camera's up vector is parallel to its view");
+  const Eigen::Vector3d x_unit = x.normalized();
+  const Eigen::Vector3d y = z.cross(x_unit);
+  Eigen::Matrix4d view = Eigen::Matrix4d::Identity();
+  view.block<1, 3>(0, 0) = x_unit.transpose();
+  view.block<1, 3>(1, 0) = y.transpose();
+  view.block<1, 3>(2, 0) = z.transpose();
+  view.block<3, 1>(0, 3) = -view.topLeftCorner<3, 3>() * eye;
+  return view.cast<float>();
+}
+
+Eigen::Matrix4f Camera::projection_matrix(double aspect, double near, double far) const {
+  const double f = 1.0 / std::tan(0.5 * radians(fov_y_deg));
+  Eigen::Matrix4d projection = Eigen::Matrix4d::Zero();
+  projection(0, 0) = f / aspect;
+  projection(1, 1) = f;
+  projection(2, 2) = (far + near) / (near - far);
+  projection(2, 3) = 2.0 * far * near / (near - far);
+  projection(3, 2) = -1.0;
+  return projection.cast<float>();
+}
+
+Eigen::Vector3d Camera::right() const { return up.cross(eye - target).normalized(); }
+
+Camera OrbitCamera::camera() const {
+  const double azimuth = radians(azimuth_deg);
+  const double elevation = radians(std::clamp(elevation_deg, -90.0, 90.0));
+  const Eigen::Vector3d direction(std::cos(elevation) * std::sin(azimuth), std::sin(elevation),
+                                  std::cos(elevation) * std::cos(azimuth));
+  Camera camera;
+  camera.target = target;
+  camera.eye = target + distance * direction;
+  // The derivative of the eye position by elevation: defined even straight above or below.
+  camera.up = Eigen::Vector3d(-std::sin(elevation) * std::sin(azimuth), std::cos(elevation),
+                              -std::sin(elevation) * std::cos(azimuth));
+  camera.fov_y_deg = fov_y_deg;
+  return camera;
+}
+
+OrbitCamera named_orbit(View view) {
+  OrbitCamera orbit;
+  orbit.distance = 1.0;
+  switch (view) {
+    case View::front:
+      orbit.azimuth_deg = 0.0, orbit.elevation_deg = 0.0;
+      break;
+    case View::side:
+      orbit.azimuth_deg = 90.0, orbit.elevation_deg = 0.0;
+      break;
+    case View::top:
+      orbit.azimuth_deg = 0.0, orbit.elevation_deg = 90.0;
+      break;
+    case View::iso:
+      orbit.azimuth_deg = 45.0, orbit.elevation_deg = 30.0;
+      break;
+  }
+  return orbit;
+}
+
+Camera fit_camera(const Bounds& bounds, View view, double aspect, double margin, double fov_y_deg) {
+  Bounds box = bounds;
+  if (box.empty() || box.diagonal() == 0.0) {
+    const Eigen::Vector3d centre = box.empty() ? Eigen::Vector3d::Zero() : box.centre();
+    box = Bounds();
+    box.extend(Eigen::Vector3d(centre - Eigen::Vector3d::Constant(0.5)));
+    box.extend(Eigen::Vector3d(centre + Eigen::Vector3d::Constant(0.5)));
+  }
+  OrbitCamera orbit = named_orbit(view);
+  orbit.target = box.centre();
+  orbit.fov_y_deg = fov_y_deg;
+  const Camera unit = orbit.camera();  // distance 1: gives the view's axes
+  const Eigen::Vector3d backward = (unit.eye - unit.target).normalized();
+  const Eigen::Vector3d right = unit.right();
+  const Eigen::Vector3d up = backward.cross(right);
+  const double tan_y = std::tan(0.5 * radians(fov_y_deg)), tan_x = tan_y * aspect;
+  // The eye at distance d sees a corner at (x, y, z) (camera axes, z towards the eye) when
+  // |x| <= (d - z) tan_x and |y| <= (d - z) tan_y: the nearest d that holds every corner.
+  double distance = 0.0;
+  for (int corner = 0; corner < 8; ++corner) {
+    const Eigen::Vector3d point((corner & 1) ? box.max.x() : box.min.x(),
+                                (corner & 2) ? box.max.y() : box.min.y(),
+                                (corner & 4) ? box.max.z() : box.min.z());
+    const Eigen::Vector3d offset = point - box.centre();
+    const double z = offset.dot(backward);
+    distance = std::max({distance, z + margin * std::abs(offset.dot(right)) / tan_x,
+                         z + margin * std::abs(offset.dot(up)) / tan_y});
+  }
+  orbit.distance = distance;
+  return orbit.camera();
+}
+
+Eigen::Vector2d clip_range(const Camera& camera, const Bounds& bounds) {
+  const double distance = (camera.eye - camera.target).norm();
+  if (bounds.empty()) return Eigen::Vector2d(distance * 0.01, distance * 100.0);
+  const double radius = 0.5 * bounds.diagonal();
+  const double centre_distance = (bounds.centre() - camera.eye).norm();
+  const double far = centre_distance + radius * 1.01 + 1e-9;
+  const double near = std::max(centre_distance - radius * 1.01, far * 1e-4);
+  return Eigen::Vector2d(near, far);
+}
+
+}  // namespace partreg::render

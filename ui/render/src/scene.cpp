@@ -1,0 +1,76 @@
+#include "partreg/render/scene.hpp"
+
+#include <Eigen/Geometry>
+
+#include "partreg/core/errors.hpp"
+
+namespace partreg::render {
+
+bool Scene::empty() const {
+  for (const PointSet& set : point_sets)
+    if (set.positions.rows() > 0) return false;
+  for (const MeshItem& item : meshes)
+    if (item.mesh.faces.rows() > 0) return false;
+  for (const LineSet& set : line_sets)
+    if (set.starts.rows() > 0) return false;
+  return true;
+}
+
+Bounds Scene::bounds() const {
+  Bounds bounds;
+  for (const PointSet& set : point_sets) bounds.extend(set.positions);
+  for (const MeshItem& item : meshes) bounds.extend(item.mesh.vertices);
+  for (const LineSet& set : line_sets) {
+    bounds.extend(set.starts);
+    bounds.extend(set.ends);
+  }
+  return bounds;
+}
+
+Colors part_colors(const Eigen::VectorXi& part) {
+  Colors colors(part.size(), 3);
+  for (Eigen::Index i = 0; i < part.size(); ++i) colors.row(i) = part_color(part[i]).transpose();
+  return colors;
+}
+
+LineSet make_triad(const Eigen::Vector3d& position, const Eigen::Matrix3d& rotation, double length,
+                   float width_pixels) {
+  LineSet triad;
+  triad.starts = position.transpose().replicate(3, 1);
+  triad.ends = triad.starts + length * rotation.transpose();  // row k: position + length * axis k
+  triad.colors.resize(3, 3);
+  triad.colors << 0.9f, 0.1f, 0.1f, 0.1f, 0.7f, 0.1f, 0.1f, 0.25f, 0.95f;
+  triad.width_pixels = width_pixels;
+  return triad;
+}
+
+LineSet make_correspondences(const core::Points& from, const core::Points& to, Color color,
+                             float width_pixels) {
+  if (from.rows() != to.rows())
+    throw UsageError("correspondences need as many start points as end points (" +
+                     std::to_string(from.rows()) + " and " + std::to_string(to.rows()) + ")");
+  LineSet lines;
+  lines.starts = from;
+  lines.ends = to;
+  lines.color = color;
+  lines.width_pixels = width_pixels;
+  return lines;
+}
+
+core::Points vertex_normals(const core::Mesh& mesh) {
+  core::Points normals = core::Points::Zero(mesh.vertices.rows(), 3);
+  for (Eigen::Index f = 0; f < mesh.faces.rows(); ++f) {
+    const Eigen::RowVector3d a = mesh.vertices.row(mesh.faces(f, 0));
+    const Eigen::RowVector3d b = mesh.vertices.row(mesh.faces(f, 1));
+    const Eigen::RowVector3d c = mesh.vertices.row(mesh.faces(f, 2));
+    const Eigen::RowVector3d area_normal = (b - a).cross(c - a);  // length: twice the area
+    for (int k = 0; k < 3; ++k) normals.row(mesh.faces(f, k)) += area_normal;
+  }
+  for (Eigen::Index i = 0; i < normals.rows(); ++i) {
+    const double length = normals.row(i).norm();
+    normals.row(i) = length > 0.0 ? Eigen::RowVector3d(normals.row(i) / length) : Eigen::RowVector3d::UnitZ();
+  }
+  return normals;
+}
+
+}  // namespace partreg::render
