@@ -24,6 +24,7 @@ int main(int argc, char** argv) {
   partreg::app::add_synth_command(app);
   partreg::app::add_label_command(app);
   partreg::app::add_register_command(app);
+  partreg::app::add_render_commands(app);
 
   try {
     app.parse(argc, argv);

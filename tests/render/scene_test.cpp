@@ -90,6 +90,18 @@ TEST(Scene, VertexNormalsPointOutOfASphere) {
     EXPECT_GT(normals.row(i).dot(sphere.vertices.row(i).normalized()), 0.95) << i;
 }
 
+TEST(Scene, VertexNormalsOfADoubleSidedMeshDoNotCancel) {
+  // Every face twice, once per winding, on shared vertices (as ShapeNet exports often are).
+  core::Mesh sphere = testing::uv_sphere(1.0, 12, 24);
+  const Eigen::Index count = sphere.faces.rows();
+  sphere.faces.conservativeResize(2 * count, 3);
+  for (Eigen::Index f = 0; f < count; ++f)
+    sphere.faces.row(count + f) << sphere.faces(f, 0), sphere.faces(f, 2), sphere.faces(f, 1);
+  const core::Points normals = vertex_normals(sphere);
+  for (Eigen::Index i = 0; i < normals.rows(); ++i)
+    EXPECT_GT(std::abs(normals.row(i).dot(sphere.vertices.row(i).normalized())), 0.95) << i;
+}
+
 TEST(Scene, PartColoursComeFromTheLabelPalette) {
   Eigen::VectorXi part(3);
   part << 0, 1, -1;

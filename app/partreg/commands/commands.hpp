@@ -15,5 +15,6 @@ void add_info_command(CLI::App& app);
 void add_synth_command(CLI::App& app);
 void add_register_command(CLI::App& app);
 void add_label_command(CLI::App& app);
+void add_render_commands(CLI::App& app);  ///< `render` and `figure` (headless OSMesa)
 
 }  // namespace partreg::app

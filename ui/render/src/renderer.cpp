@@ -77,11 +77,11 @@ core::Points centred(const core::Points& points, const Eigen::Vector3d& origin) 
   return points.rowwise() - origin.transpose();
 }
 
-// About half the spacing of N points spread over a surface the size of the scene, kept between 0.15% and
-// 1.5% of the diagonal: sparse clouds read as surfaces and dense ones stay crisp.
+// About a third of the spacing of N points spread over a surface the size of the scene, kept between 0.15%
+// and 1% of the diagonal: sparse clouds still show their surface and dense ones stay crisp.
 double automatic_radius(const PointSet& set, double diagonal) {
   const double scale = diagonal > 0.0 ? diagonal : 1.0;
-  return scale * std::clamp(0.6 / std::sqrt(static_cast<double>(set.positions.rows())), 0.0015, 0.015);
+  return scale * std::clamp(0.4 / std::sqrt(static_cast<double>(set.positions.rows())), 0.0015, 0.01);
 }
 
 }  // namespace

@@ -58,14 +58,28 @@ LineSet make_correspondences(const core::Points& from, const core::Points& to, C
 }
 
 core::Points vertex_normals(const core::Mesh& mesh) {
-  core::Points normals = core::Points::Zero(mesh.vertices.rows(), 3);
+  // Face normals (length: twice the area) and, per vertex, the largest one as the reference orientation.
+  // Each face counts with the sign that agrees with the reference: double-sided meshes (every face twice,
+  // once per winding, as many ShapeNet exports) and inconsistently wound ones then do not cancel out.
+  core::Points face_normals(mesh.faces.rows(), 3);
   for (Eigen::Index f = 0; f < mesh.faces.rows(); ++f) {
     const Eigen::RowVector3d a = mesh.vertices.row(mesh.faces(f, 0));
-    const Eigen::RowVector3d b = mesh.vertices.row(mesh.faces(f, 1));
-    const Eigen::RowVector3d c = mesh.vertices.row(mesh.faces(f, 2));
-    const Eigen::RowVector3d area_normal = (b - a).cross(c - a);  // length: twice the area
-    for (int k = 0; k < 3; ++k) normals.row(mesh.faces(f, k)) += area_normal;
+    face_normals.row(f) =
+        (mesh.vertices.row(mesh.faces(f, 1)) - a).cross(mesh.vertices.row(mesh.faces(f, 2)) - a);
   }
+  core::Points reference = core::Points::Zero(mesh.vertices.rows(), 3);
+  for (Eigen::Index f = 0; f < mesh.faces.rows(); ++f)
+    for (int k = 0; k < 3; ++k)
+      if (face_normals.row(f).squaredNorm() > reference.row(mesh.faces(f, k)).squaredNorm())
+        reference.row(mesh.faces(f, k)) = face_normals.row(f);
+  core::Points normals = core::Points::Zero(mesh.vertices.rows(), 3);
+  for (Eigen::Index f = 0; f < mesh.faces.rows(); ++f)
+    for (int k = 0; k < 3; ++k) {
+      const Eigen::Index v = mesh.faces(f, k);
+      normals.row(v) += face_normals.row(f).dot(reference.row(v)) < 0.0
+                            ? Eigen::RowVector3d(-face_normals.row(f))
+                            : Eigen::RowVector3d(face_normals.row(f));
+    }
   for (Eigen::Index i = 0; i < normals.rows(); ++i) {
     const double length = normals.row(i).norm();
     normals.row(i) = length > 0.0 ? Eigen::RowVector3d(normals.row(i) / length) : Eigen::RowVector3d::UnitZ();

@@ -1,0 +1,131 @@
+// `partreg figure compare MODEL OBSERVED` and `partreg figure space MODEL`: the paper's kinds of figure,
+// rendered headlessly (layouts in docs/rendering.md).
+#include <chrono>
+#include <iostream>
+#include <memory>
+#include <sstream>
+
+#include "partreg/commands/common.hpp"
+#include "partreg/commands/render_common.hpp"
+#include "partreg/core/errors.hpp"
+#include "partreg/core/registration.hpp"
+#include "partreg/io/model_file.hpp"
+#include "partreg/render/figure.hpp"
+
+namespace partreg::app {
+namespace {
+
+struct FigureOptions {
+  std::string model_path, observed_path, variants = "holistic,hol+part", space = "holistic", out;
+  std::string size, view = "iso", background = "white";
+  std::size_t observed_samples = 3000;
+  int samples = 4, restarts = 1;
+  bool align_axes = false, estimate_scale = false;
+};
+
+render::FigureSettings figure_settings(const FigureOptions& options, const std::string& default_size) {
+  render::FigureSettings settings;
+  std::tie(settings.panel_width, settings.panel_height) =
+      parse_size(options.size.empty() ? default_size : options.size, "--size");
+  settings.view = render::parse_view(options.view);
+  settings.background = render::parse_background(options.background);
+  settings.samples = options.samples;
+  return settings;
+}
+
+std::vector<std::string> split_commas(const std::string& text) {
+  std::vector<std::string> parts;
+  std::stringstream in(text);
+  for (std::string part; std::getline(in, part, ',');)
+    if (!part.empty()) parts.push_back(part);
+  return parts;
+}
+
+void write_figure(const render::Image& image, const std::string& out,
+                  std::chrono::steady_clock::time_point start) {
+  render::write_png(out, image);
+  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  std::cerr << "wrote " << out << " (" << image.width << "x" << image.height << ", " << seconds << " s)\n";
+}
+
+void run_compare(const FigureOptions& options) {
+  const auto start = std::chrono::steady_clock::now();
+  const render::FigureSettings settings = figure_settings(options, "640x480");
+  std::vector<core::RegistrationSettings> runs;
+  for (const std::string& variant : split_commas(options.variants)) {
+    core::RegistrationSettings run;
+    run.variant = core::parse_variant(variant);
+    run.restarts = options.restarts;
+    run.align_principal_axes = options.align_axes;
+    run.estimate_scale = options.estimate_scale;
+    runs.push_back(run);
+  }
+  if (runs.empty()) throw UsageError("--variants names no variant");
+  const core::CategoryModel model = io::read_model(options.model_path);
+  const core::Points observed = read_points_logged(options.observed_path, options.observed_samples, 1);
+  render::Grid grid;
+  grid.columns = static_cast<int>(runs.size());
+  for (const core::RegistrationSettings& run : runs) {
+    const core::RegistrationResult result = core::register_observation(model, observed, run);
+    const std::string variant = core::to_string(result.variant);
+    std::ostringstream title;
+    title.precision(2);
+    title << std::fixed << variant << ": mean fit " << 100.0 * result.fit.mean_normalised << "% of diagonal";
+    std::cerr << title.str() << " (" << result.seconds << " s)\n";
+    grid.panels.push_back(render::comparison_panel(model, observed, result, title.str(), settings.view));
+  }
+  write_figure(render::render_grid(grid, settings), options.out, start);
+}
+
+void run_space(const FigureOptions& options) {
+  const auto start = std::chrono::steady_clock::now();
+  const render::FigureSettings settings = figure_settings(options, "320x240");
+  const core::CategoryModel model = io::read_model(options.model_path);
+  const render::Grid grid = render::shape_space_grid(model, options.space);
+  std::cerr << "space " << options.space << ": " << grid.row_labels.size() << " principal directions\n";
+  write_figure(render::render_grid(grid, settings), options.out, start);
+}
+
+void add_shared_options(CLI::App* command, FigureOptions& o, const char* default_size) {
+  command->add_option("--out", o.out, "the PNG to write")->required();
+  command->add_option("--size", o.size,
+                      std::string("size of each panel, WIDTHxHEIGHT (default ") + default_size + ")");
+  command->add_option("--view", o.view, "iso | front | side | top (+Y up)")->capture_default_str();
+  command->add_option("--background", o.background, "white | transparent")->capture_default_str();
+  command->add_option("--samples", o.samples, "antialiasing samples per pixel (1: none)")
+      ->capture_default_str();
+}
+
+}  // namespace
+
+void add_figure_command(CLI::App& app) {
+  auto o = std::make_shared<FigureOptions>();
+  CLI::App* figure =
+      app.add_subcommand("figure", "Figures of registrations and shape spaces (PNG, headless)");
+  figure->require_subcommand(1);
+
+  CLI::App* compare = figure->add_subcommand(
+      "compare",
+      "Observed cloud (red) and each variant's deformed canonical (parts coloured), one panel each");
+  compare->add_option("MODEL", o->model_path, "model file from partreg train")->required();
+  compare->add_option("OBSERVED", o->observed_path, "observed cloud or mesh")->required();
+  compare->add_option("--variants", o->variants, "comma-separated: holistic, partwise, hol+part")
+      ->capture_default_str();
+  compare->add_option("--points", o->observed_samples, "points sampled from an observed mesh")
+      ->capture_default_str();
+  compare->add_option("--restarts", o->restarts, "initial rotations about the up axis")
+      ->capture_default_str();
+  compare->add_flag("--align-axes", o->align_axes, "start from principal-axis rotations (poses far off)");
+  compare->add_flag("--scale", o->estimate_scale, "also fit a uniform scale");
+  add_shared_options(compare, *o, "640x480");
+  compare->callback([o] { run_compare(*o); });
+
+  CLI::App* space = figure->add_subcommand(
+      "space", "A shape space's principal directions: one row each, shapes at -2..+2 standard deviations");
+  space->add_option("MODEL", o->model_path, "model file from partreg train")->required();
+  space->add_option("--space", o->space, "holistic or a part's name")->capture_default_str();
+  add_shared_options(space, *o, "320x240");
+  space->callback([o] { run_space(*o); });
+}
+
+}  // namespace partreg::app

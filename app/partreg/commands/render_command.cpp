@@ -1,0 +1,149 @@
+// `partreg render FILES... --out IMAGE.png`: any clouds and meshes partreg reads, drawn headlessly.
+#include <chrono>
+#include <iostream>
+#include <memory>
+#include <sstream>
+
+#include "partreg/commands/commands.hpp"
+#include "partreg/commands/render_common.hpp"
+#include "partreg/core/errors.hpp"
+#include "partreg/io/atomic_file.hpp"
+#include "partreg/io/cloud_io.hpp"
+#include "partreg/io/geometry_io.hpp"
+#include "partreg/io/mesh_io.hpp"
+#include "partreg/render/headless.hpp"
+
+namespace partreg::app {
+namespace {
+
+struct RenderOptions {
+  std::vector<std::string> files;
+  std::string out, size = "1280x960", view = "iso", color_by = "file", background = "white";
+  std::string eye, target, up = "0,1,0";
+  bool wireframe = false, flat = false;
+  double point_radius = 0.0;
+  int samples = 4;
+};
+
+// The part of each vertex of a PLY mesh written by partreg (`register --mesh-out`, `label`): read as a
+// cloud, used only when its vertices are exactly the mesh's (the mesh reader may have joined duplicates).
+Eigen::VectorXi mesh_vertex_part(const std::string& path, const core::Mesh& mesh) {
+  if (io::lower_extension(path) != ".ply") return {};
+  const io::CloudFile vertices = io::read_cloud_file(path);
+  const auto found = vertices.attributes.integers.find("part");
+  if (found == vertices.attributes.integers.end() || vertices.cloud.points.rows() != mesh.vertices.rows() ||
+      !vertices.cloud.points.isApprox(mesh.vertices))
+    return {};
+  return found->second;
+}
+
+// Adds one file to the scene, coloured by its index, by part or not at all.
+void add_file(render::Scene& scene, const std::string& path, int index, const RenderOptions& options) {
+  render::Colors colors;
+  Eigen::VectorXi part;
+  const render::Color file_color =
+      options.color_by == "none" ? render::neutral_color() : render::file_color(index);
+  if (io::is_mesh_file(path)) {
+    render::MeshItem item;
+    item.mesh = io::read_mesh(path);
+    if (options.color_by == "part") part = mesh_vertex_part(path, item.mesh);
+    item.color = file_color;
+    item.shading = options.flat ? render::Shading::flat : render::Shading::smooth;
+    item.wireframe = options.wireframe;
+    std::cerr << "read " << path << ": " << item.mesh.vertices.rows() << " vertices, "
+              << item.mesh.faces.rows() << " triangles\n";
+    if (part.size() > 0) item.vertex_colors = render::part_colors(part);
+    scene.meshes.push_back(std::move(item));
+  } else {
+    io::CloudFile file = io::read_cloud_file(path);
+    render::PointSet points;
+    points.positions = std::move(file.cloud.points);
+    points.color = file_color;
+    points.radius = options.point_radius;
+    const auto found = file.attributes.integers.find("part");
+    if (options.color_by == "part" && found != file.attributes.integers.end()) part = found->second;
+    std::cerr << "read " << path << ": " << points.positions.rows() << " points\n";
+    if (part.size() > 0) points.colors = render::part_colors(part);
+    scene.point_sets.push_back(std::move(points));
+  }
+  if (options.color_by == "part" && part.size() == 0)
+    std::cerr << "partreg: warning: " << path << " has no part labels; drawn in its file colour\n";
+}
+
+render::Camera camera_of(const RenderOptions& options, const render::Scene& scene, double aspect) {
+  render::Camera camera = render::fit_camera(scene.bounds(), render::parse_view(options.view), aspect);
+  if (options.eye.empty() != options.target.empty()) throw UsageError("--eye and --target go together");
+  if (!options.eye.empty()) {
+    camera.eye = parse_vector3(options.eye, "--eye");
+    camera.target = parse_vector3(options.target, "--target");
+    camera.up = parse_vector3(options.up, "--up");
+    camera.view_matrix();  // refuses a degenerate camera before any work
+  }
+  return camera;
+}
+
+void run_render(const RenderOptions& options) {
+  const auto start = std::chrono::steady_clock::now();
+  if (options.color_by != "part" && options.color_by != "file" && options.color_by != "none")
+    throw UsageError("--color-by takes part, file or none, not '" + options.color_by + "'");
+  render::RenderSettings settings;
+  std::tie(settings.width, settings.height) = parse_size(options.size, "--size");
+  settings.samples = options.samples;
+  settings.background = render::parse_background(options.background);
+  render::parse_view(options.view);
+  render::Scene scene;
+  for (std::size_t i = 0; i < options.files.size(); ++i)
+    add_file(scene, options.files[i], static_cast<int>(i), options);
+  const render::Camera camera =
+      camera_of(options, scene, static_cast<double>(settings.width) / settings.height);
+  render::HeadlessRenderer renderer(settings);
+  render::write_png(options.out, renderer.render(scene, camera));
+  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  std::cerr << "wrote " << options.out << " (" << settings.width << "x" << settings.height << ", " << seconds
+            << " s)\n";
+}
+
+}  // namespace
+
+std::pair<int, int> parse_size(const std::string& text, const std::string& option) {
+  std::stringstream in(text);
+  int width = 0, height = 0;
+  char x = 0;
+  if (!(in >> width >> x >> height) || !in.eof() || (x != 'x' && x != 'X') || width < 1 || height < 1)
+    throw UsageError(option + " takes WIDTHxHEIGHT in pixels (like 1280x960), not '" + text + "'");
+  return {width, height};
+}
+
+Eigen::Vector3d parse_vector3(const std::string& text, const std::string& option) {
+  std::stringstream in(text);
+  Eigen::Vector3d value;
+  char comma = 0, comma2 = 0;
+  if (!(in >> value.x() >> comma >> value.y() >> comma2 >> value.z()) || !in.eof() || comma != ',' ||
+      comma2 != ',')
+    throw UsageError(option + " takes three numbers separated by commas, not '" + text + "'");
+  return value;
+}
+
+void add_render_commands(CLI::App& app) {
+  auto o = std::make_shared<RenderOptions>();
+  CLI::App* command = app.add_subcommand("render", "Draw clouds and meshes into a PNG, headlessly (OSMesa)");
+  command->add_option("FILES", o->files, "clouds (PCD, PLY, XYZ) and meshes (OBJ, PLY, STL, ...)");
+  command->add_option("--out", o->out, "the PNG to write")->required();
+  command->add_option("--size", o->size, "image size WIDTHxHEIGHT (pixels)")->capture_default_str();
+  command->add_option("--view", o->view, "iso | front | side | top (+Y up)")->capture_default_str();
+  command->add_option("--color-by", o->color_by, "part | file | none")->capture_default_str();
+  command->add_option("--background", o->background, "white | transparent")->capture_default_str();
+  command->add_option("--eye", o->eye, "X,Y,Z camera position (with --target; overrides --view)");
+  command->add_option("--target", o->target, "X,Y,Z point the camera looks at");
+  command->add_option("--up", o->up, "X,Y,Z up direction of the camera")->capture_default_str();
+  command->add_option("--point-radius", o->point_radius, "splat radius in data units (0: automatic)")
+      ->capture_default_str();
+  command->add_option("--samples", o->samples, "antialiasing samples per pixel (1: none)")
+      ->capture_default_str();
+  command->add_flag("--wireframe", o->wireframe, "draw mesh edges over the surfaces");
+  command->add_flag("--flat", o->flat, "flat shading of meshes (one normal per triangle)");
+  command->callback([o] { run_render(*o); });
+  add_figure_command(app);
+}
+
+}  // namespace partreg::app

@@ -1,0 +1,22 @@
+#pragma once
+/// \file
+/// What `partreg render` and `partreg figure` share: option parsing for sizes and vectors, and the figure
+/// subcommands (figure_command.cpp), which add_render_commands registers with `render`.
+
+#include <CLI/CLI.hpp>
+#include <Eigen/Core>
+#include <string>
+#include <utility>
+
+namespace partreg::app {
+
+/// "1280x960" -> {1280, 960}; UsageError naming `option` for anything else or a side below 1 pixel.
+std::pair<int, int> parse_size(const std::string& text, const std::string& option);
+
+/// "x,y,z" -> a vector; UsageError naming `option` otherwise.
+Eigen::Vector3d parse_vector3(const std::string& text, const std::string& option);
+
+/// `partreg figure compare` and `partreg figure space`.
+void add_figure_command(CLI::App& app);
+
+}  // namespace partreg::app
