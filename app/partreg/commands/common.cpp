@@ -1,5 +1,9 @@
 #include "partreg/commands/common.hpp"
 
+#include <unistd.h>
+
+#include <algorithm>
+#include <filesystem>
 #include <fstream>
 #include <iostream>
 
@@ -7,6 +11,7 @@
 #include "partreg/core/sampling.hpp"
 #include "partreg/io/atomic_file.hpp"
 #include "partreg/io/geometry_io.hpp"
+#include "partreg/io/labels_file.hpp"
 
 namespace partreg::app {
 
@@ -59,6 +64,53 @@ nlohmann::json spaces_json(const core::CategoryModel& model) {
                       {"variances", values(space.variances)},
                       {"explained", values(space.explained_fraction())}});
   return spaces;
+}
+
+// A labels file made for one instance's mesh gives that instance (the canonical) its parts.
+std::string apply_labels_file(io::Dataset& dataset, const std::string& labels_path,
+                              const std::string& canonical, const io::DatasetOptions& options) {
+  if (dataset.part_folders)
+    throw UsageError("dataset " + dataset.name + " has part files already; --labels is for datasets without");
+  const io::PartLabels labels = io::read_labels_file(labels_path);
+  const std::string instance =
+      canonical.empty() ? std::filesystem::path(labels.source).stem().string() : canonical;
+  if (labels.target == io::PartLabels::Target::faces) {
+    io::apply_face_labels(dataset, instance, labels.names, labels.labels, options);
+    return instance;
+  }
+  auto found =
+      std::find_if(dataset.instances.begin(), dataset.instances.end(),
+                   [&](const core::TrainingInstance& candidate) { return candidate.name == instance; });
+  if (found == dataset.instances.end())
+    throw InputError("labels file " + labels_path + " is for '" + instance + "', not in the dataset");
+  io::check_labels_match(labels, static_cast<std::size_t>(found->points.rows()), "points of " + instance);
+  found->part = labels.labels;
+  dataset.part_names = labels.names;
+  return instance;
+}
+
+StagedFolder::StagedFolder(const std::filesystem::path& destination) : destination_(destination) {
+  namespace fs = std::filesystem;
+  if (fs::exists(destination) && !(fs::is_directory(destination) && fs::is_empty(destination)))
+    throw UsageError("output folder " + destination.string() + " exists and is not empty");
+  const fs::path parent = destination.has_parent_path() ? destination.parent_path() : fs::path(".");
+  fs::create_directories(parent);
+  staging_ = parent / ("." + destination.filename().string() + ".partial-" + std::to_string(::getpid()));
+  fs::remove_all(staging_);
+  fs::create_directories(staging_);
+}
+
+StagedFolder::~StagedFolder() {
+  if (!committed_) {
+    std::error_code ignored;
+    std::filesystem::remove_all(staging_, ignored);
+  }
+}
+
+void StagedFolder::commit() {
+  if (std::filesystem::exists(destination_)) std::filesystem::remove(destination_);  // empty, checked above
+  std::filesystem::rename(staging_, destination_);
+  committed_ = true;
 }
 
 }  // namespace partreg::app

@@ -4,11 +4,13 @@
 /// writing a JSON report to a file (atomically) or to stdout.
 
 #include <cstdint>
+#include <filesystem>
 #include <nlohmann/json.hpp>
 #include <string>
 
 #include "partreg/core/category_model.hpp"
 #include "partreg/core/types.hpp"
+#include "partreg/io/dataset.hpp"
 
 namespace partreg::app {
 
@@ -26,5 +28,28 @@ nlohmann::json matrix_json(const Eigen::Matrix4d& matrix);
 
 /// Each space of a model: name, points, dimensions, beta, variances and explained fraction per dimension.
 nlohmann::json spaces_json(const core::CategoryModel& model);
+
+/// Gives the instance a labels file was made for (`canonical`, or the labels' source file name) its parts;
+/// returns that instance's name. UsageError for a dataset with part files; InputError for a mismatch.
+std::string apply_labels_file(io::Dataset& dataset, const std::string& labels_path,
+                              const std::string& canonical, const io::DatasetOptions& options);
+
+/// An output folder written in full or not at all: files go to a hidden sibling folder that commit() renames
+/// to the destination; without commit() (a failure) the sibling is removed. The destination must not exist
+/// or be empty (UsageError otherwise), so nothing of somebody else's is ever overwritten.
+class StagedFolder {
+ public:
+  explicit StagedFolder(const std::filesystem::path& destination);
+  ~StagedFolder();
+  StagedFolder(const StagedFolder&) = delete;
+  StagedFolder& operator=(const StagedFolder&) = delete;
+  /// Where to write the files now.
+  const std::filesystem::path& staging() const { return staging_; }
+  void commit();
+
+ private:
+  std::filesystem::path destination_, staging_;
+  bool committed_ = false;
+};
 
 }  // namespace partreg::app

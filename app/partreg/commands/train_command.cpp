@@ -8,7 +8,6 @@
 #include "partreg/core/errors.hpp"
 #include "partreg/core/training.hpp"
 #include "partreg/io/dataset.hpp"
-#include "partreg/io/labels_file.hpp"
 #include "partreg/io/model_file.hpp"
 
 namespace partreg::app {
@@ -23,30 +22,6 @@ struct TrainOptions {
   io::DatasetOptions dataset;
   core::TrainingSettings settings;
 };
-
-// A labels file made for one instance's mesh gives that instance (the canonical) its parts.
-void apply_labels(io::Dataset& dataset, TrainOptions& options) {
-  if (dataset.part_folders)
-    throw UsageError("dataset " + options.dataset_path +
-                     " has part files already; --labels is for datasets without");
-  const io::PartLabels labels = io::read_labels_file(options.labels_path);
-  const std::string instance =
-      options.canonical.empty() ? std::filesystem::path(labels.source).stem().string() : options.canonical;
-  if (labels.target == io::PartLabels::Target::faces) {
-    io::apply_face_labels(dataset, instance, labels.names, labels.labels, options.dataset);
-  } else {
-    auto found =
-        std::find_if(dataset.instances.begin(), dataset.instances.end(),
-                     [&](const core::TrainingInstance& candidate) { return candidate.name == instance; });
-    if (found == dataset.instances.end())
-      throw InputError("labels file " + options.labels_path + " is for '" + instance +
-                       "', not in the dataset");
-    io::check_labels_match(labels, static_cast<std::size_t>(found->points.rows()), "points of " + instance);
-    found->part = labels.labels;
-    dataset.part_names = labels.names;
-  }
-  options.settings.canonical = instance;
-}
 
 nlohmann::json summary_json(const core::CategoryModel& model, const core::TrainingReport& report) {
   return {{"category", model.category},
@@ -83,7 +58,9 @@ void run_train(TrainOptions& options) {
   io::Dataset dataset = io::read_dataset(options.dataset_path, options.dataset);
   std::cerr << "dataset " << dataset.name << ": " << dataset.instances.size() << " instances"
             << (dataset.part_names.empty() ? ", no parts" : "") << '\n';
-  if (!options.labels_path.empty()) apply_labels(dataset, options);
+  if (!options.labels_path.empty())
+    options.settings.canonical =
+        apply_labels_file(dataset, options.labels_path, options.canonical, options.dataset);
   for (const core::TrainingInstance& instance : dataset.instances)
     if (instance.points.rows() < options.settings.canonical_points &&
         options.settings.canonical == instance.name)

@@ -1,5 +1,6 @@
 #include "partreg/core/kdtree.hpp"
 
+#include <algorithm>
 #include <nanoflann.hpp>
 
 #include "partreg/core/errors.hpp"
@@ -74,6 +75,19 @@ void KdTree::nearest_all(const Points& queries, std::vector<int>& index,
       squared_distance[i] = squared;
     }
   });
+}
+
+std::vector<std::pair<int, double>> KdTree::nearest_k(const Eigen::Vector3d& query, int k) const {
+  const std::size_t count = std::min<std::size_t>(static_cast<std::size_t>(std::max(k, 0)),
+                                                  static_cast<std::size_t>(points_.rows()));
+  std::vector<int> index(count);
+  std::vector<double> squared(count);
+  nanoflann::KNNResultSet<double, int> result(count);
+  result.init(index.data(), squared.data());
+  if (count > 0) index_->tree.findNeighbors(result, query.data(), nanoflann::SearchParams());
+  std::vector<std::pair<int, double>> found(count);
+  for (std::size_t i = 0; i < count; ++i) found[i] = {index[i], squared[i]};
+  return found;
 }
 
 void KdTree::radius(const Eigen::Vector3d& query, double radius,

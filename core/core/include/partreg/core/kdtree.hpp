@@ -23,6 +23,8 @@ class KdTree {
   std::pair<int, double> nearest(const Eigen::Vector3d& query) const;
   /// Nearest point of every row of `queries` (threaded); fills index and squared distance per query.
   void nearest_all(const Points& queries, std::vector<int>& index, Eigen::VectorXd& squared_distance) const;
+  /// The `k` nearest points (fewer if the tree holds fewer) as (index, squared distance), nearest first.
+  std::vector<std::pair<int, double>> nearest_k(const Eigen::Vector3d& query, int k) const;
   /// Every point within `radius` of `query` as (index, squared distance), in no particular order.
   void radius(const Eigen::Vector3d& query, double radius, std::vector<std::pair<int, double>>& found) const;
 

@@ -1,0 +1,228 @@
+// `partreg eval DATASET --out DIR`: the paper's evaluation protocol on a category, with CSV, tables and
+// plots. `partreg report CSV... --out DIR`: the same tables and plots from one or more runs (shards,
+// categories).
+#include <unistd.h>
+
+#include <chrono>
+#include <cmath>
+#include <fstream>
+#include <iomanip>
+#include <iostream>
+#include <memory>
+#include <regex>
+#include <sstream>
+
+#include "partreg/commands/commands.hpp"
+#include "partreg/commands/common.hpp"
+#include "partreg/core/errors.hpp"
+#include "partreg/eval/protocol.hpp"
+#include "partreg/eval/report.hpp"
+#include "partreg/io/cloud_io.hpp"
+#include "partreg/io/dataset.hpp"
+
+namespace partreg::app {
+namespace fs = std::filesystem;
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+struct EvalOptions {
+  std::string dataset_path, out_path, labels_path, canonical, protocol = "paper", shard = "1/1";
+  std::vector<std::string> variants = {"holistic", "partwise", "hol+part"};
+  std::string direction = "observed", loss = "huber";
+  bool no_viewpoint = false;
+  int folds = -1, views = -1;
+  std::vector<int> levels;  // 1-based indices of the paper's five levels; empty = the protocol's
+  io::DatasetOptions dataset;
+  eval::EvalSettings settings;
+};
+
+std::string clock_text(double seconds) {
+  const long s = std::lround(seconds);
+  std::ostringstream out;
+  out << s / 60 << ':' << std::setw(2) << std::setfill('0') << s % 60;
+  return out.str();
+}
+
+// A progress bar with the time left on a terminal; a line every 5% otherwise (logs stay short).
+class ProgressBar {
+ public:
+  void operator()(std::size_t done, std::size_t total, const std::string& line) {
+    const bool terminal = ::isatty(2);
+    if (!line.empty()) std::cerr << (terminal && drawn_ ? "\n" : "") << line << '\n';
+    if (total == 0 || done == 0) return;
+    const int percent = static_cast<int>(100 * done / total);
+    if (!terminal && percent < next_percent_ && done != total) return;
+    next_percent_ = percent + 5;
+    const double elapsed = std::chrono::duration<double>(Clock::now() - start_).count();
+    const double left = elapsed / double(done) * double(total - done);
+    const int filled = percent * 30 / 100;
+    std::cerr << (terminal ? "\r" : "") << '[' << std::string(filled, '#') << std::string(30 - filled, '.')
+              << "] " << done << '/' << total << " registrations, " << clock_text(elapsed) << " elapsed, ~"
+              << clock_text(left) << " left" << (terminal ? "" : "\n") << std::flush;
+    drawn_ = terminal;
+    if (terminal && done == total) std::cerr << '\n';
+  }
+
+ private:
+  Clock::time_point start_ = Clock::now();
+  int next_percent_ = 0;
+  bool drawn_ = false;
+};
+
+void parse_shard(const std::string& text, eval::EvalSettings& settings) {
+  std::smatch match;
+  if (!std::regex_match(text, match, std::regex(R"((\d+)/(\d+))")))
+    throw UsageError("--shard must look like 2/4 (the second of four), not '" + text + "'");
+  settings.shard = std::stoi(match[1]) - 1;
+  settings.shard_count = std::stoi(match[2]);
+  if (settings.shard_count < 1 || settings.shard < 0 || settings.shard >= settings.shard_count)
+    throw UsageError("--shard " + text + " is out of range");
+}
+
+// Synthetic categories keep ground-truth correspondences in DATASET/ground_truth/<instance>.ply.
+std::map<std::string, core::Points> read_correspondences(const fs::path& folder, const io::Dataset& dataset) {
+  std::map<std::string, core::Points> correspondences;
+  for (const core::TrainingInstance& instance : dataset.instances) {
+    const fs::path file = folder / "ground_truth" / (instance.name + ".ply");
+    if (!fs::exists(file)) return {};
+    correspondences[instance.name] = io::read_cloud_file(file).cloud.points;
+  }
+  std::cerr << "ground-truth correspondences found: the correspondence error is reported\n";
+  return correspondences;
+}
+
+eval::EvalInput load_input(EvalOptions& options) {
+  io::Dataset dataset = io::read_dataset(options.dataset_path, options.dataset);
+  eval::EvalInput input;
+  if (!options.labels_path.empty())
+    input.fixed_canonical =
+        apply_labels_file(dataset, options.labels_path, options.canonical, options.dataset);
+  std::cerr << "dataset " << dataset.name << ": " << dataset.instances.size() << " instances"
+            << (dataset.part_names.empty() ? ", no parts" : "") << '\n';
+  input.category = dataset.name;
+  input.part_names = dataset.part_names;
+  input.correspondences = read_correspondences(options.dataset_path, dataset);
+  input.instances = std::move(dataset.instances);
+  return input;
+}
+
+void configure(EvalOptions& options) {
+  eval::EvalSettings& settings = options.settings;
+  settings.protocol = eval::protocol_by_name(options.protocol);
+  if (options.folds >= 0) settings.protocol.folds = options.folds;
+  if (options.views >= 0) settings.protocol.views = options.views;
+  if (!options.levels.empty()) {
+    settings.protocol.levels.clear();
+    for (int level : options.levels) {
+      if (level < 1 || level > 5)
+        throw UsageError("--levels takes the paper's levels 1 to 5, not " + std::to_string(level));
+      settings.protocol.levels.push_back(level - 1);
+    }
+  }
+  settings.variants.clear();
+  for (const std::string& name : options.variants) settings.variants.push_back(core::parse_variant(name));
+  if (settings.variants.empty()) throw UsageError("--variants needs at least one variant");
+  settings.registration.direction = core::parse_direction(options.direction);
+  settings.registration.loss = core::parse_loss(options.loss);
+  settings.use_viewpoint = !options.no_viewpoint;
+  if (settings.threads < 0) throw UsageError("--threads must be 0 (all cores) or more");
+  parse_shard(options.shard, settings);
+}
+
+// results.csv, tables.md and the sweep plots of every category, into `folder`.
+void write_reports(const fs::path& folder, const std::vector<eval::EvalRow>& rows) {
+  eval::write_rows_csv(folder / "results.csv", rows);
+  std::ofstream(folder / "tables.md") << eval::markdown_report(rows);
+  for (const std::string& category : eval::categories_of(rows))
+    for (bool partial : {false, true})
+      eval::write_sweep_plot(folder / (category + (partial ? "_partial" : "_full") + "_sweeps.png"), rows,
+                             category, partial);
+}
+
+void run_eval(EvalOptions& options) {
+  configure(options);
+  StagedFolder folder(options.out_path);  // refuses a folder holding other files before any work
+  const eval::EvalInput input = load_input(options);
+  eval::tested_instances(input, options.settings);  // fails early on too few instances
+  const auto start = Clock::now();
+  ProgressBar progress;
+  const std::vector<eval::EvalRow> rows = eval::run_evaluation(input, options.settings, std::ref(progress));
+  const double seconds = std::chrono::duration<double>(Clock::now() - start).count();
+  write_reports(folder.staging(), rows);
+  double registration_seconds = 0.0;
+  for (const eval::EvalRow& row : rows) registration_seconds += row.seconds;
+  const nlohmann::json run = {
+      {"dataset", options.dataset_path},
+      {"protocol", options.protocol},
+      {"shard", options.shard},
+      {"threads", options.settings.threads},
+      {"registrations", rows.size()},
+      {"seconds", seconds},
+      {"mean_registration_seconds", rows.empty() ? 0.0 : registration_seconds / rows.size()}};
+  std::ofstream(folder.staging() / "run.json") << run.dump(2) << '\n';
+  folder.commit();
+  std::cerr << rows.size() << " registrations in " << clock_text(seconds) << " ("
+            << (rows.empty() ? 0.0 : registration_seconds / rows.size()) << " s each); wrote results.csv, "
+            << "tables.md and plots to " << options.out_path << '\n';
+}
+
+struct ReportOptions {
+  std::vector<std::string> csv_paths;
+  std::string out_path;
+};
+
+void run_report(const ReportOptions& options) {
+  std::vector<eval::EvalRow> rows;
+  for (const std::string& path : options.csv_paths) {
+    const fs::path file = fs::is_directory(path) ? fs::path(path) / "results.csv" : fs::path(path);
+    std::vector<eval::EvalRow> more = eval::read_rows_csv(file);
+    rows.insert(rows.end(), more.begin(), more.end());
+  }
+  StagedFolder folder(options.out_path);
+  write_reports(folder.staging(), rows);
+  folder.commit();
+  std::cerr << "merged " << rows.size() << " registrations from " << options.csv_paths.size() << " runs into "
+            << options.out_path << '\n';
+}
+
+}  // namespace
+
+void add_eval_command(CLI::App& app) {
+  auto o = std::make_shared<EvalOptions>();
+  CLI::App* command = app.add_subcommand("eval", "The paper's evaluation (leave-one-out, views, sweeps)");
+  command->add_option("DATASET", o->dataset_path, "category folder (as for train)")->required();
+  command->add_option("--out", o->out_path, "new folder: results.csv, tables.md, plots, run.json")
+      ->required();
+  command->add_option("--labels", o->labels_path, "labels file giving the canonical its parts");
+  command->add_option("--canonical", o->canonical, "instance the labels belong to (default: from the file)");
+  command->add_option("--protocol", o->protocol, "paper | quick")->capture_default_str();
+  command->add_option("--variants", o->variants, "holistic, partwise, hol+part")
+      ->delimiter(',')
+      ->capture_default_str();
+  command->add_option("--threads", o->settings.threads, "0 = all cores")->capture_default_str();
+  command->add_option("--folds", o->folds, "0 = leave-one-out (the protocol's choice by default)");
+  command->add_option("--views", o->views, "partial views per instance: 0, 12, 42, 162, ...");
+  command->add_option("--levels", o->levels, "which of the paper's five sweep levels (1-5), e.g. 1,3,5")
+      ->delimiter(',');
+  command->add_option("--shard", o->shard, "run only shard i of n (tested instances dealt round-robin)")
+      ->capture_default_str();
+  command->add_option("--direction", o->direction, "canonical | observed | symmetric")->capture_default_str();
+  command->add_option("--loss", o->loss, "squared | huber | cauchy | trimmed")->capture_default_str();
+  command->add_flag("--no-viewpoint", o->no_viewpoint, "do not tell the registration where the camera was");
+  command->add_option("--samples", o->dataset.points_per_instance, "surface samples per mesh (the truth)")
+      ->capture_default_str();
+  command->add_option("--seed", o->settings.seed, "seed of views, samples and perturbations")
+      ->capture_default_str();
+  command->callback([o] { run_eval(*o); });
+
+  auto r = std::make_shared<ReportOptions>();
+  CLI::App* report =
+      app.add_subcommand("report", "Tables and plots from eval runs (merges shards and categories)");
+  report->add_option("RUNS", r->csv_paths, "eval output folders or their results.csv files")->required();
+  report->add_option("--out", r->out_path, "new folder for the merged results.csv, tables.md and plots")
+      ->required();
+  report->callback([r] { run_report(*r); });
+}
+
+}  // namespace partreg::app

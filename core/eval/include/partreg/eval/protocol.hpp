@@ -1,0 +1,90 @@
+#pragma once
+/// \file
+/// The paper's evaluation protocol (section 4) on a category: every tested instance is new to the model
+/// (leave-one-out, or k folds), observed fully and from partial views cast from a tessellated sphere, clean
+/// and under the four perturbation sweeps, registered with every variant. One row per registration, so
+/// nothing is lost; tables and plots are made from the rows (report.hpp).
+
+#include <functional>
+#include <map>
+#include <string>
+#include <vector>
+
+#include "partreg/core/registration.hpp"
+#include "partreg/core/training.hpp"
+#include "partreg/eval/metrics.hpp"
+#include "partreg/eval/perturbation.hpp"
+#include "partreg/eval/views.hpp"
+
+namespace partreg::eval {
+
+/// What is observed of each tested instance.
+struct Protocol {
+  std::string name = "paper";
+  int views = 42;        ///< partial views per instance (a tessellated sphere's vertex count; 0 = none)
+  int sweep_views = 12;  ///< of those, how many also get the perturbation sweeps (the first ones)
+  std::vector<int> levels = {0, 1, 2, 3, 4};  ///< which of the paper's five levels each sweep uses
+  int max_test_instances = 0;                 ///< 0 = every instance; else that many, evenly spread
+  int folds = 0;                              ///< 0 = leave-one-out; else k folds
+};
+
+/// "paper": 42 views, sweeps on the full view and 12 partial views at all five levels, leave-one-out.
+/// "quick": 12 views, sweeps on the full view and 2 partial views at levels 1, 3 and 5, 2 test instances.
+/// UsageError for another name.
+Protocol protocol_by_name(const std::string& name);
+
+/// A category to evaluate, in data units.
+struct EvalInput {
+  std::string category;
+  std::vector<core::TrainingInstance> instances;  ///< each with its mesh where it has one
+  std::vector<std::string> part_names;            ///< empty for a category without parts
+  std::string fixed_canonical;  ///< the labelled instance that must be canonical (never tested); or empty
+  /// Ground-truth correspondences by instance name: the same row is the same semantic point on every
+  /// instance (synthetic categories). Optional.
+  std::map<std::string, core::Points> correspondences;
+};
+
+struct EvalSettings {
+  Protocol protocol;
+  std::vector<core::Variant> variants = {core::Variant::holistic, core::Variant::partwise,
+                                         core::Variant::hol_part};
+  core::TrainingSettings training;
+  core::RegistrationSettings registration;  ///< the variant is set per row
+  CameraSettings camera;
+  bool use_viewpoint = true;    ///< partial views tell the registration where the camera was
+  int full_view_points = 4000;  ///< surface samples of a mesh's full view (a different sample than the truth)
+  int threads = 0;              ///< 0 = all cores
+  int shard = 0;                ///< this run's shard, in [0, shard_count)
+  int shard_count = 1;          ///< tested instances are dealt to shards round-robin
+  std::uint64_t seed = 1;
+};
+
+/// One registration of the protocol.
+struct EvalRow {
+  std::string category, instance, canonical, variant;
+  int fold = 0;
+  int view = -1;  ///< -1: the full view; else the index of the partial view's direction
+  Eigen::Vector3d direction = Eigen::Vector3d::Zero();  ///< unit direction to the camera (zero for full)
+  Perturbation perturbation = Perturbation::none;
+  int level_index = -1;      ///< which of the paper's levels (0-4), -1 without perturbation
+  double paper_level = 0.0;  ///< the level in the paper's units (m for a 0.3 m object, ratio, rad)
+  double level = 0.0;        ///< the level applied: relative to the diagonal for lengths
+  double diagonal = 0.0;     ///< the instance's bounding-box diagonal (data units)
+  int observed_points = 0;
+  RegistrationErrors errors;
+  double seconds = 0.0;  ///< registration time
+};
+
+/// Progress: rows done, rows planned, and a line worth logging (empty when there is none).
+using EvalProgress = std::function<void(std::size_t done, std::size_t total, const std::string& line)>;
+
+/// Which instances are tested (shard applied), in order; InputError when the category has too few instances
+/// for the protocol (fewer than 3, or fewer than 2 left to train on in a fold).
+std::vector<std::string> tested_instances(const EvalInput& input, const EvalSettings& settings);
+
+/// Runs the protocol. Variants that need parts are dropped for a category without parts (reported through
+/// `progress`). Rows are in a fixed order, independent of threads and shards.
+std::vector<EvalRow> run_evaluation(const EvalInput& input, const EvalSettings& settings,
+                                    const EvalProgress& progress = {});
+
+}  // namespace partreg::eval

@@ -1,0 +1,293 @@
+#include "partreg/eval/protocol.hpp"
+
+#include <tbb/parallel_for.h>
+#include <tbb/task_arena.h>
+
+#include <algorithm>
+#include <atomic>
+#include <chrono>
+#include <mutex>
+#include <optional>
+#include <sstream>
+
+#include "partreg/core/errors.hpp"
+#include "partreg/core/kdtree.hpp"
+#include "partreg/core/normalization.hpp"
+#include "partreg/core/sampling.hpp"
+
+namespace partreg::eval {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+// One way an instance is seen before any perturbation: the full view or one partial view.
+struct Observation {
+  int view = -1;
+  Eigen::Vector3d direction = Eigen::Vector3d::Zero();
+  core::Points points;
+  std::optional<Eigen::Vector3d> viewpoint;
+};
+
+// Everything about one tested instance that does not depend on the model.
+struct TestCase {
+  std::size_t instance = 0;  // index into EvalInput::instances
+  int fold = 0;
+  double diagonal = 0.0;
+  std::vector<Observation> observations;  // full view first, then partial views in direction order
+};
+
+// One observation under one perturbation level; it yields one row per variant.
+struct Job {
+  std::size_t observation = 0;
+  Perturbation kind = Perturbation::none;
+  int level_index = -1;
+};
+
+std::uint64_t mix(std::uint64_t seed, std::uint64_t value) {
+  // splitmix64 step: seeds of neighbouring jobs are unrelated, and a job's seed depends only on what it is.
+  std::uint64_t z = seed + 0x9e3779b97f4a7c15ULL + value * 0xbf58476d1ce4e5b9ULL;
+  z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ULL;
+  z = (z ^ (z >> 27)) * 0x94d049bb133111ebULL;
+  return z ^ (z >> 31);
+}
+
+std::vector<Job> plan_jobs(const TestCase& test, const Protocol& protocol) {
+  std::vector<Job> jobs;
+  for (std::size_t o = 0; o < test.observations.size(); ++o) jobs.push_back({o, Perturbation::none, -1});
+  const std::size_t swept = std::min<std::size_t>(test.observations.size(), 1 + protocol.sweep_views);
+  for (Perturbation kind : sweep_kinds())
+    for (int level : protocol.levels)
+      for (std::size_t o = 0; o < swept; ++o) jobs.push_back({o, kind, level});
+  return jobs;
+}
+
+std::vector<core::Variant> usable_variants(const EvalInput& input, const EvalSettings& settings,
+                                           const EvalProgress& progress) {
+  std::vector<core::Variant> variants;
+  for (core::Variant variant : settings.variants) {
+    const bool needs_parts = variant != core::Variant::holistic;
+    if (needs_parts && input.part_names.empty()) {
+      if (progress)
+        progress(0, 0, input.category + " has no parts: " + core::to_string(variant) + " is not run");
+      continue;
+    }
+    if (std::find(variants.begin(), variants.end(), variant) == variants.end()) variants.push_back(variant);
+  }
+  if (variants.empty()) variants.push_back(core::Variant::holistic);
+  return variants;
+}
+
+TestCase make_test_case(const EvalInput& input, std::size_t index, int fold, const EvalSettings& settings,
+                        const std::vector<Eigen::Vector3d>& directions, const EvalProgress& progress) {
+  const core::TrainingInstance& instance = input.instances[index];
+  TestCase test{index, fold, core::bounding_box_diagonal(instance.points), {}};
+  const bool has_mesh = instance.mesh.faces.rows() > 0;
+  Observation full;
+  full.points =
+      has_mesh
+          ? core::sample_surface(instance.mesh, settings.full_view_points, mix(settings.seed, index)).points
+          : instance.points;
+  test.observations.push_back(std::move(full));
+  if (directions.empty()) return test;
+  const ViewCaster caster = has_mesh ? ViewCaster(instance.mesh) : ViewCaster(instance.points);
+  for (std::size_t v = 0; v < directions.size(); ++v) {
+    View view = caster.cast(directions[v], settings.camera);
+    if (view.points.rows() < 30) {
+      if (progress)
+        progress(0, 0, instance.name + ": view " + std::to_string(v) + " sees too little, skipped");
+      continue;
+    }
+    Observation observation{static_cast<int>(v), view.direction, std::move(view.points), std::nullopt};
+    if (settings.use_viewpoint) observation.viewpoint = view.viewpoint;
+    test.observations.push_back(std::move(observation));
+  }
+  return test;
+}
+
+// Where each canonical point truly lies on the tested instance: the canonical's nearest ground-truth row,
+// taken on the tested instance (rows are the same semantic points on every instance).
+std::optional<core::Points> true_correspondents(const EvalInput& input, const core::CategoryModel& model,
+                                                const std::string& instance) {
+  const auto canonical = input.correspondences.find(model.training.canonical);
+  const auto tested = input.correspondences.find(instance);
+  if (canonical == input.correspondences.end() || tested == input.correspondences.end()) return std::nullopt;
+  if (canonical->second.rows() != tested->second.rows())
+    throw InputError("ground-truth correspondences of " + instance + " and " + model.training.canonical +
+                     " have different row counts");
+  std::vector<int> nearest;
+  Eigen::VectorXd squared;
+  core::KdTree(canonical->second).nearest_all(model.normalization.undo(model.canonical), nearest, squared);
+  return core::select_rows(tested->second, nearest);
+}
+
+core::Points moved(const core::Points& points, const Eigen::Isometry3d& T) {
+  return (points * T.linear().transpose()).rowwise() + T.translation().transpose();
+}
+
+// Registers every variant on one perturbed observation and measures each against the moved ground truth.
+void run_job(const EvalInput& input, const EvalSettings& settings, const core::CategoryModel& model,
+             const TestCase& test, const std::optional<core::Points>& correspondents, const Job& job,
+             const std::vector<core::Variant>& variants, EvalRow* rows) {
+  const core::TrainingInstance& instance = input.instances[test.instance];
+  const Observation& observation = test.observations[job.observation];
+  const double paper_level = job.level_index < 0 ? 0.0 : paper_levels(job.kind)[job.level_index];
+  const double level = relative_level(job.kind, paper_level);
+  const std::uint64_t seed = mix(mix(mix(settings.seed, test.instance), observation.view + 1),
+                                 static_cast<std::uint64_t>(job.kind) * 8 + (job.level_index + 1));
+  const Perturbed perturbed = perturb(observation.points, job.kind, level, test.diagonal, seed);
+  const core::Points truth = moved(instance.points, perturbed.T_perturbed_original);
+  const std::optional<core::Points> truth_of_row =
+      correspondents ? std::optional<core::Points>(moved(*correspondents, perturbed.T_perturbed_original))
+                     : std::nullopt;
+  core::RegistrationSettings registration = settings.registration;
+  if (observation.viewpoint) registration.viewpoint = perturbed.T_perturbed_original * *observation.viewpoint;
+  for (std::size_t v = 0; v < variants.size(); ++v) {
+    registration.variant = variants[v];
+    const core::RegistrationResult result = core::register_observation(model, perturbed.points, registration);
+    EvalRow& row = rows[v];
+    row = {input.category,
+           instance.name,
+           model.training.canonical,
+           core::to_string(variants[v]),
+           test.fold,
+           observation.view,
+           observation.direction,
+           job.kind,
+           job.level_index,
+           paper_level,
+           level,
+           test.diagonal,
+           static_cast<int>(perturbed.points.rows()),
+           measure_errors(result.deformed, result.part, model.part_names, truth, test.diagonal,
+                          truth_of_row ? &*truth_of_row : nullptr),
+           result.seconds};
+  }
+}
+
+}  // namespace
+
+Protocol protocol_by_name(const std::string& name) {
+  if (name == "paper") return Protocol{};
+  if (name == "quick") return Protocol{"quick", 12, 2, {0, 2, 4}, 2, 0};
+  throw UsageError("unknown protocol '" + name + "' (paper, quick)");
+}
+
+std::vector<std::string> tested_instances(const EvalInput& input, const EvalSettings& settings) {
+  const Protocol& protocol = settings.protocol;
+  if (input.instances.size() < 3)
+    throw InputError("category " + input.category + " has " + std::to_string(input.instances.size()) +
+                     " instances: leave-one-out needs at least 3 (2 to train on, 1 to test)");
+  if (protocol.folds != 0 && (protocol.folds < 2 || protocol.folds > int(input.instances.size())))
+    throw UsageError("--folds must be 0 (leave-one-out) or between 2 and the instance count");
+  if (settings.shard_count < 1 || settings.shard < 0 || settings.shard >= settings.shard_count)
+    throw UsageError("shard must be in [0, shard count)");
+  std::vector<std::string> candidates;
+  for (const core::TrainingInstance& instance : input.instances)
+    if (instance.name != input.fixed_canonical) candidates.push_back(instance.name);
+  if (protocol.max_test_instances > 0 && protocol.max_test_instances < int(candidates.size())) {
+    std::vector<std::string> spread;  // evenly spread over the sorted names
+    for (int i = 0; i < protocol.max_test_instances; ++i)
+      spread.push_back(candidates[i * candidates.size() / protocol.max_test_instances]);
+    candidates = spread;
+  }
+  std::vector<std::string> tested;
+  for (std::size_t i = 0; i < candidates.size(); ++i)
+    if (int(i % settings.shard_count) == settings.shard) tested.push_back(candidates[i]);
+  return tested;
+}
+
+namespace {
+
+// Fold of every instance that may be tested: its position among them (leave-one-out) or that modulo k.
+std::map<std::string, int> assign_folds(const EvalInput& input, const Protocol& protocol) {
+  std::map<std::string, int> fold;
+  int position = 0;
+  for (const core::TrainingInstance& instance : input.instances)
+    if (instance.name != input.fixed_canonical) {
+      fold[instance.name] = protocol.folds > 0 ? position % protocol.folds : position;
+      ++position;
+    }
+  return fold;
+}
+
+std::vector<core::TrainingInstance> training_set(const EvalInput& input,
+                                                 const std::map<std::string, int>& folds, int fold) {
+  std::vector<core::TrainingInstance> training;
+  for (const core::TrainingInstance& instance : input.instances) {
+    const auto found = folds.find(instance.name);
+    if (found == folds.end() || found->second != fold) training.push_back(instance);
+  }
+  if (training.size() < 2)
+    throw InputError("fold " + std::to_string(fold) + " of " + input.category + " leaves " +
+                     std::to_string(training.size()) + " instance to train on (at least 2 are needed)");
+  return training;
+}
+
+std::size_t index_of(const EvalInput& input, const std::string& name) {
+  for (std::size_t i = 0; i < input.instances.size(); ++i)
+    if (input.instances[i].name == name) return i;
+  throw InputError("no instance named " + name);
+}
+
+}  // namespace
+
+std::vector<EvalRow> run_evaluation(const EvalInput& input, const EvalSettings& settings,
+                                    const EvalProgress& progress) {
+  const std::vector<std::string> tested = tested_instances(input, settings);
+  const std::vector<core::Variant> variants = usable_variants(input, settings, progress);
+  const std::map<std::string, int> folds = assign_folds(input, settings.protocol);
+  const std::vector<Eigen::Vector3d> directions = settings.protocol.views > 0
+                                                      ? sphere_directions(settings.protocol.views)
+                                                      : std::vector<Eigen::Vector3d>{};
+
+  // Views are cheap: cast them all first, so the total is known before the first registration.
+  std::map<int, std::vector<TestCase>> tests_by_fold;
+  std::size_t total = 0;
+  for (const std::string& name : tested) {
+    TestCase test =
+        make_test_case(input, index_of(input, name), folds.at(name), settings, directions, progress);
+    total += plan_jobs(test, settings.protocol).size() * variants.size();
+    tests_by_fold[test.fold].push_back(std::move(test));
+  }
+
+  std::vector<EvalRow> rows;
+  rows.reserve(total);
+  std::atomic<std::size_t> done{0};
+  std::mutex progress_mutex;
+  tbb::task_arena arena(settings.threads > 0 ? settings.threads : tbb::task_arena::automatic);
+  for (const auto& [fold, tests] : tests_by_fold) {
+    core::TrainingSettings training = settings.training;
+    if (!input.fixed_canonical.empty()) training.canonical = input.fixed_canonical;
+    const auto start = Clock::now();
+    const core::CategoryModel model =
+        core::train_category(input.category, training_set(input, folds, fold), input.part_names, training);
+    if (progress) {
+      std::ostringstream line;
+      line << "fold " << fold << ": trained on " << model.training.instances.size() << " instances in "
+           << std::chrono::duration<double>(Clock::now() - start).count() << " s (canonical "
+           << model.training.canonical << ")";
+      progress(done, total, line.str());
+    }
+    for (const TestCase& test : tests) {
+      const std::optional<core::Points> correspondents =
+          true_correspondents(input, model, input.instances[test.instance].name);
+      const std::vector<Job> jobs = plan_jobs(test, settings.protocol);
+      const std::size_t first = rows.size();
+      rows.resize(first + jobs.size() * variants.size());
+      arena.execute([&] {
+        tbb::parallel_for(std::size_t{0}, jobs.size(), [&](std::size_t j) {
+          run_job(input, settings, model, test, correspondents, jobs[j], variants,
+                  &rows[first + j * variants.size()]);
+          const std::size_t now = done += variants.size();
+          if (progress) {
+            const std::lock_guard<std::mutex> lock(progress_mutex);
+            progress(now, total, "");
+          }
+        });
+      });
+    }
+  }
+  return rows;
+}
+
+}  // namespace partreg::eval

@@ -1,0 +1,316 @@
+#include "partreg/eval/report.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <fstream>
+#include <iomanip>
+#include <limits>
+#include <map>
+#include <set>
+#include <sstream>
+
+#include "partreg/core/errors.hpp"
+
+namespace partreg::eval {
+namespace {
+
+const char* const kHeader =
+    "category,instance,canonical,fold,variant,view,direction_x,direction_y,direction_z,perturbation,"
+    "level_index,paper_level,level,diagonal,observed_points,eq5,eq5_normalised,chamfer,chamfer_normalised,"
+    "correspondence_normalised,part_eq5_normalised,seconds";
+
+// Part errors in one CSV field: "body=1.2e-05;handle=3.4e-05".
+std::string parts_field(const std::map<std::string, double>& parts) {
+  std::ostringstream out;
+  out << std::setprecision(9);
+  for (const auto& [name, value] : parts) out << (out.tellp() > 0 ? ";" : "") << name << '=' << value;
+  return out.str();
+}
+
+std::map<std::string, double> parse_parts(const std::string& field) {
+  std::map<std::string, double> parts;
+  std::istringstream in(field);
+  for (std::string item; std::getline(in, item, ';');) {
+    const auto equals = item.find('=');
+    if (equals == std::string::npos) throw std::invalid_argument("part error without '='");
+    parts[item.substr(0, equals)] = std::stod(item.substr(equals + 1));
+  }
+  return parts;
+}
+
+std::vector<std::string> split(const std::string& line) {
+  std::vector<std::string> fields;
+  std::istringstream in(line);
+  for (std::string field; std::getline(in, field, ',');) fields.push_back(field);
+  if (!line.empty() && line.back() == ',') fields.emplace_back();
+  return fields;
+}
+
+EvalRow parse_row(const std::vector<std::string>& f) {
+  EvalRow row;
+  row.category = f[0], row.instance = f[1], row.canonical = f[2], row.fold = std::stoi(f[3]);
+  row.variant = f[4], row.view = std::stoi(f[5]);
+  row.direction = {std::stod(f[6]), std::stod(f[7]), std::stod(f[8])};
+  row.perturbation = parse_perturbation(f[9]);
+  row.level_index = std::stoi(f[10]), row.paper_level = std::stod(f[11]), row.level = std::stod(f[12]);
+  row.diagonal = std::stod(f[13]), row.observed_points = std::stoi(f[14]);
+  row.errors.eq5 = std::stod(f[15]), row.errors.eq5_normalised = std::stod(f[16]);
+  row.errors.chamfer = std::stod(f[17]), row.errors.chamfer_normalised = std::stod(f[18]);
+  if (!f[19].empty()) row.errors.correspondence_normalised = std::stod(f[19]);
+  row.errors.part_eq5_normalised = parse_parts(f[20]);
+  row.seconds = std::stod(f[21]);
+  return row;
+}
+
+bool is_partial(const EvalRow& row) { return row.view >= 0; }
+
+// Mean of `value` over the rows `keep` accepts; NaN for none.
+template <class Keep, class Value>
+double mean_of(const std::vector<EvalRow>& rows, Keep keep, Value value) {
+  double sum = 0.0;
+  int count = 0;
+  for (const EvalRow& row : rows)
+    if (keep(row)) {
+      const double v = value(row);
+      if (std::isfinite(v)) sum += v, ++count;
+    }
+  return count > 0 ? sum / count : std::numeric_limits<double>::quiet_NaN();
+}
+
+std::string cell(double value, double factor = 1e4, int precision = 2) {
+  if (!std::isfinite(value)) return "-";
+  std::ostringstream out;
+  out << std::fixed << std::setprecision(precision) << value * factor;
+  return out.str();
+}
+
+// One table: a row per category, a column per variant.
+template <class Value>
+void category_table(std::ostringstream& out, const std::vector<EvalRow>& rows, const std::string& title,
+                    bool partial, Value value, double factor, int precision) {
+  const std::vector<std::string> variants = variants_of(rows);
+  out << "\n" << title << "\n\n| category |";
+  for (const std::string& variant : variants) out << ' ' << variant << " |";
+  out << "\n|---|";
+  for (std::size_t i = 0; i < variants.size(); ++i) out << "---|";
+  out << "\n";
+  for (const std::string& category : categories_of(rows)) {
+    out << "| " << category << " |";
+    for (const std::string& variant : variants)
+      out << ' '
+          << cell(mean_of(
+                      rows,
+                      [&](const EvalRow& r) {
+                        return r.category == category && r.variant == variant && is_partial(r) == partial &&
+                               r.perturbation == Perturbation::none;
+                      },
+                      value),
+                  factor, precision)
+          << " |";
+    out << "\n";
+  }
+}
+
+}  // namespace
+
+std::vector<std::string> categories_of(const std::vector<EvalRow>& rows) {
+  std::vector<std::string> categories;
+  for (const EvalRow& row : rows)
+    if (std::find(categories.begin(), categories.end(), row.category) == categories.end())
+      categories.push_back(row.category);
+  return categories;
+}
+
+std::vector<std::string> variants_of(const std::vector<EvalRow>& rows) {
+  std::vector<std::string> variants;
+  for (const char* variant : {"holistic", "partwise", "hol+part"})
+    if (std::any_of(rows.begin(), rows.end(), [&](const EvalRow& r) { return r.variant == variant; }))
+      variants.push_back(variant);
+  return variants;
+}
+
+void write_rows_csv(const std::filesystem::path& path, const std::vector<EvalRow>& rows) {
+  std::ofstream out(path);
+  if (!out) throw InputError("cannot write " + path.string());
+  out << kHeader << '\n' << std::setprecision(9);
+  for (const EvalRow& r : rows) {
+    out << r.category << ',' << r.instance << ',' << r.canonical << ',' << r.fold << ',' << r.variant << ','
+        << r.view << ',' << r.direction.x() << ',' << r.direction.y() << ',' << r.direction.z() << ','
+        << to_string(r.perturbation) << ',' << r.level_index << ',' << r.paper_level << ',' << r.level << ','
+        << r.diagonal << ',' << r.observed_points << ',' << r.errors.eq5 << ',' << r.errors.eq5_normalised
+        << ',' << r.errors.chamfer << ',' << r.errors.chamfer_normalised << ',';
+    if (r.errors.correspondence_normalised) out << *r.errors.correspondence_normalised;
+    out << ',' << parts_field(r.errors.part_eq5_normalised) << ',' << r.seconds << '\n';
+  }
+  if (!out.flush()) throw InputError("cannot write " + path.string());
+}
+
+std::vector<EvalRow> read_rows_csv(const std::filesystem::path& path) {
+  std::ifstream in(path);
+  if (!in) throw InputError("cannot read " + path.string());
+  std::string line;
+  if (!std::getline(in, line) || line != kHeader)
+    throw InputError(path.string() + " is not a partreg evaluation CSV (header differs)");
+  std::vector<EvalRow> rows;
+  for (int number = 2; std::getline(in, line); ++number) {
+    if (line.empty()) continue;
+    const std::vector<std::string> fields = split(line);
+    try {
+      if (fields.size() != 22) throw std::invalid_argument("expected 22 fields");
+      rows.push_back(parse_row(fields));
+    } catch (const std::exception& e) {
+      throw InputError(path.string() + ":" + std::to_string(number) + ": malformed row (" + e.what() + ")");
+    }
+  }
+  return rows;
+}
+
+double mean_eq5_normalised(const std::vector<EvalRow>& rows, const std::string& category,
+                           const std::string& variant, bool partial, Perturbation kind, int level_index) {
+  return mean_of(
+      rows,
+      [&](const EvalRow& r) {
+        return r.category == category && r.variant == variant && is_partial(r) == partial &&
+               r.perturbation == kind && r.level_index == level_index;
+      },
+      [](const EvalRow& r) { return r.errors.eq5_normalised; });
+}
+
+double swept_clean_eq5_normalised(const std::vector<EvalRow>& rows, const std::string& category,
+                                  const std::string& variant, bool partial) {
+  std::set<std::pair<std::string, int>> swept;  // (instance, view) pairs that were perturbed
+  for (const EvalRow& r : rows)
+    if (r.category == category && r.perturbation != Perturbation::none && is_partial(r) == partial)
+      swept.emplace(r.instance, r.view);
+  return mean_of(
+      rows,
+      [&](const EvalRow& r) {
+        return r.category == category && r.variant == variant && r.perturbation == Perturbation::none &&
+               swept.count({r.instance, r.view}) > 0;
+      },
+      [](const EvalRow& r) { return r.errors.eq5_normalised; });
+}
+
+namespace {
+
+void header_row(std::ostringstream& out, const std::string& first, const std::vector<std::string>& columns) {
+  out << "| " << first << " |";
+  for (const std::string& column : columns) out << ' ' << column << " |";
+  out << "\n|---|";
+  for (std::size_t i = 0; i < columns.size(); ++i) out << "---|";
+  out << "\n";
+}
+
+void part_tables(std::ostringstream& out, const std::vector<EvalRow>& rows) {
+  const std::vector<std::string> variants = variants_of(rows);
+  for (const std::string& category : categories_of(rows)) {
+    std::vector<std::string> parts;
+    for (const EvalRow& r : rows)
+      if (r.category == category)
+        for (const auto& entry : r.errors.part_eq5_normalised)
+          if (std::find(parts.begin(), parts.end(), entry.first) == parts.end()) parts.push_back(entry.first);
+    if (parts.size() < 2) continue;
+    for (bool partial : {false, true}) {
+      out << "\nEq. 5 per part x 1e4, " << category << ", " << (partial ? "partial views" : "full views")
+          << " (canonical points of the part to the whole true instance):\n\n";
+      header_row(out, "part", variants);
+      for (const std::string& part : parts) {
+        out << "| " << part << " |";
+        for (const std::string& variant : variants) {
+          const double mean = mean_of(
+              rows,
+              [&](const EvalRow& r) {
+                return r.category == category && r.variant == variant && is_partial(r) == partial &&
+                       r.perturbation == Perturbation::none;
+              },
+              [&](const EvalRow& r) {
+                const auto found = r.errors.part_eq5_normalised.find(part);
+                return found == r.errors.part_eq5_normalised.end() ? std::nan("") : found->second;
+              });
+          out << ' ' << cell(mean) << " |";
+        }
+        out << "\n";
+      }
+    }
+  }
+}
+
+void sweep_tables(std::ostringstream& out, const std::vector<EvalRow>& rows) {
+  const std::vector<std::string> variants = variants_of(rows);
+  for (const std::string& category : categories_of(rows))
+    for (bool partial : {false, true}) {
+      if (std::none_of(rows.begin(), rows.end(), [&](const EvalRow& r) {
+            return r.category == category && is_partial(r) == partial && r.perturbation != Perturbation::none;
+          }))
+        continue;
+      out << "\nSweeps, " << category << ", " << (partial ? "partial views" : "full views")
+          << " (mean Eq. 5 x 1e4; levels in the paper's units for a 0.3 m object):\n\n";
+      header_row(out, "perturbation", variants);
+      out << "| clean (same observations) |";
+      for (const std::string& variant : variants)
+        out << ' ' << cell(swept_clean_eq5_normalised(rows, category, variant, partial)) << " |";
+      out << "\n";
+      for (Perturbation kind : sweep_kinds())
+        for (int level = 0; level < 5; ++level) {
+          std::ostringstream cells;
+          bool any = false;
+          for (const std::string& variant : variants) {
+            const double mean = mean_eq5_normalised(rows, category, variant, partial, kind, level);
+            any = any || std::isfinite(mean);
+            cells << ' ' << cell(mean) << " |";
+          }
+          if (any)
+            out << "| " << to_string(kind) << ' ' << paper_levels(kind)[level] << " |" << cells.str() << "\n";
+        }
+    }
+}
+
+void timing_table(std::ostringstream& out, const std::vector<EvalRow>& rows) {
+  out << "\nTime per registration (s, mean over every row):\n\n";
+  header_row(out, "category", variants_of(rows));
+  for (const std::string& category : categories_of(rows)) {
+    out << "| " << category << " |";
+    for (const std::string& variant : variants_of(rows))
+      out << ' '
+          << cell(mean_of(
+                      rows, [&](const EvalRow& r) { return r.category == category && r.variant == variant; },
+                      [](const EvalRow& r) { return r.seconds; }),
+                  1.0, 3)
+          << " |";
+    out << "\n";
+  }
+}
+
+}  // namespace
+
+std::string markdown_report(const std::vector<EvalRow>& rows) {
+  std::ostringstream out;
+  out << "Registrations: " << rows.size()
+      << ". Eq. 5 is the paper's error (mean squared distance from each "
+         "deformed canonical point to the closest point of the true instance), divided by the square of the "
+         "instance's bounding-box diagonal; tables show it x 1e4.\n";
+  const auto eq5 = [](const EvalRow& r) { return r.errors.eq5_normalised; };
+  const auto chamfer = [](const EvalRow& r) { return r.errors.chamfer_normalised; };
+  category_table(out, rows, "Table 1: mean Eq. 5 x 1e4, fully observed instances", false, eq5, 1e4, 2);
+  category_table(out, rows, "Table 2: mean Eq. 5 x 1e4, partial views", true, eq5, 1e4, 2);
+  category_table(out, rows, "Symmetric Chamfer distance, % of the diagonal, full views", false, chamfer, 100,
+                 2);
+  category_table(out, rows, "Symmetric Chamfer distance, % of the diagonal, partial views", true, chamfer,
+                 100, 2);
+  if (std::any_of(rows.begin(), rows.end(),
+                  [](const EvalRow& r) { return r.errors.correspondence_normalised; })) {
+    const auto correspondence = [](const EvalRow& r) {
+      return r.errors.correspondence_normalised ? *r.errors.correspondence_normalised : std::nan("");
+    };
+    category_table(out, rows, "Correspondence error, % of the diagonal, full views", false, correspondence,
+                   100, 2);
+    category_table(out, rows, "Correspondence error, % of the diagonal, partial views", true, correspondence,
+                   100, 2);
+  }
+  part_tables(out, rows);
+  sweep_tables(out, rows);
+  timing_table(out, rows);
+  return out.str();
+}
+
+}  // namespace partreg::eval

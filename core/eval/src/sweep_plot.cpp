@@ -1,0 +1,182 @@
+// Figure 5 / Figure 7 style plots with cairo: four panels, error against perturbation level, a line per
+// variant.
+#include <cairo.h>
+
+#include <algorithm>
+#include <cmath>
+#include <iomanip>
+#include <limits>
+#include <sstream>
+
+#include "partreg/core/errors.hpp"
+#include "partreg/eval/report.hpp"
+
+namespace partreg::eval {
+namespace {
+
+struct Rgb {
+  double r, g, b;
+};
+
+// Okabe-Ito colours (colour-blind safe), one per variant in the paper's order.
+Rgb variant_colour(const std::string& variant) {
+  if (variant == "holistic") return {0.0, 0.447, 0.698};  // blue
+  if (variant == "partwise") return {0.902, 0.624, 0.0};  // orange
+  return {0.0, 0.62, 0.451};                              // bluish green: hol+part
+}
+
+std::string axis_label(Perturbation kind) {
+  switch (kind) {
+    case Perturbation::noise:
+      return "noise sigma (m, for a 0.3 m object)";
+    case Perturbation::outliers:
+      return "outlier ratio";
+    case Perturbation::rotation:
+      return "rotation about x, y, z (rad)";
+    case Perturbation::translation:
+      return "translation per axis (m, for a 0.3 m object)";
+    case Perturbation::none:
+      break;
+  }
+  return "";
+}
+
+std::string number(double value, int precision) {
+  std::ostringstream out;
+  out << std::fixed << std::setprecision(precision) << value;
+  return out.str();
+}
+
+struct Box {
+  double x, y, width, height;
+};
+
+void text(cairo_t* cr, double x, double y, const std::string& s, double size, double align = 0.0) {
+  cairo_set_font_size(cr, size);
+  cairo_text_extents_t extents;
+  cairo_text_extents(cr, s.c_str(), &extents);
+  cairo_move_to(cr, x - align * extents.width, y);
+  cairo_show_text(cr, s.c_str());
+}
+
+// A "nice" upper bound for the y axis: 1, 2 or 5 times a power of ten.
+double nice_ceiling(double value) {
+  if (!(value > 0)) return 1.0;
+  const double power = std::pow(10.0, std::floor(std::log10(value)));
+  for (double step : {1.0, 2.0, 5.0, 10.0})
+    if (step * power >= value) return step * power;
+  return 10 * power;
+}
+
+// The series of one panel: per variant, (level, mean Eq. 5 x 1e4) with the clean result at level 0.
+using Series = std::vector<std::pair<std::string, std::vector<std::pair<double, double>>>>;
+
+Series panel_series(const std::vector<EvalRow>& rows, const std::string& category, bool partial,
+                    Perturbation kind) {
+  Series series;
+  for (const std::string& variant : variants_of(rows)) {
+    std::vector<std::pair<double, double>> points;
+    const double clean = swept_clean_eq5_normalised(rows, category, variant, partial);
+    if (std::isfinite(clean)) points.emplace_back(0.0, clean * 1e4);
+    for (int level = 0; level < 5; ++level) {
+      const double mean = mean_eq5_normalised(rows, category, variant, partial, kind, level);
+      if (std::isfinite(mean)) points.emplace_back(paper_levels(kind)[level], mean * 1e4);
+    }
+    if (points.size() > 1) series.emplace_back(variant, points);
+  }
+  return series;
+}
+
+void draw_panel(cairo_t* cr, const Box& box, Perturbation kind, const Series& series) {
+  double top = 0.0;
+  for (const auto& [variant, points] : series)
+    for (const auto& point : points) top = std::max(top, point.second);
+  top = nice_ceiling(top * 1.05);
+  const double right = paper_levels(kind).back();
+  const Box plot{box.x + 62, box.y + 30, box.width - 80, box.height - 80};
+  auto to_x = [&](double level) { return plot.x + level / right * plot.width; };
+  auto to_y = [&](double value) { return plot.y + plot.height - value / top * plot.height; };
+
+  cairo_set_source_rgb(cr, 0, 0, 0);
+  text(cr, box.x + box.width / 2, box.y + 18, to_string(kind), 15, 0.5);
+  cairo_set_line_width(cr, 1.0);
+  for (int tick = 0; tick <= 4; ++tick) {  // horizontal grid and y labels
+    const double value = top * tick / 4;
+    cairo_set_source_rgb(cr, 0.88, 0.88, 0.88);
+    cairo_move_to(cr, plot.x, to_y(value));
+    cairo_line_to(cr, plot.x + plot.width, to_y(value));
+    cairo_stroke(cr);
+    cairo_set_source_rgb(cr, 0, 0, 0);
+    text(cr, plot.x - 6, to_y(value) + 4, number(value, top < 4 ? 2 : 1), 11, 1.0);
+  }
+  for (double level : paper_levels(kind))
+    text(cr, to_x(level), plot.y + plot.height + 16, number(level, 3), 11, 0.5);
+  text(cr, plot.x - 6, plot.y + plot.height + 16, "0", 11, 0.5);
+  text(cr, plot.x + plot.width / 2, plot.y + plot.height + 36, axis_label(kind), 12, 0.5);
+  cairo_rectangle(cr, plot.x, plot.y, plot.width, plot.height);
+  cairo_stroke(cr);
+
+  for (const auto& [variant, points] : series) {
+    const Rgb colour = variant_colour(variant);
+    cairo_set_source_rgb(cr, colour.r, colour.g, colour.b);
+    cairo_set_line_width(cr, 2.2);
+    for (std::size_t i = 0; i < points.size(); ++i)
+      (i == 0 ? cairo_move_to : cairo_line_to)(cr, to_x(points[i].first), to_y(points[i].second));
+    cairo_stroke(cr);
+    for (const auto& point : points) {
+      cairo_arc(cr, to_x(point.first), to_y(point.second), 3.5, 0, 2 * M_PI);
+      cairo_fill(cr);
+    }
+  }
+}
+
+void draw_legend(cairo_t* cr, double x, double y, const std::vector<std::string>& variants) {
+  for (const std::string& variant : variants) {
+    const Rgb colour = variant_colour(variant);
+    cairo_set_source_rgb(cr, colour.r, colour.g, colour.b);
+    cairo_set_line_width(cr, 2.2);
+    cairo_move_to(cr, x, y - 4);
+    cairo_line_to(cr, x + 24, y - 4);
+    cairo_stroke(cr);
+    cairo_set_source_rgb(cr, 0, 0, 0);
+    text(cr, x + 30, y, variant, 13);
+    x += 40 + 9 * variant.size();
+  }
+}
+
+}  // namespace
+
+bool write_sweep_plot(const std::filesystem::path& path, const std::vector<EvalRow>& rows,
+                      const std::string& category, bool partial) {
+  std::vector<Series> panels;
+  bool any = false;
+  for (Perturbation kind : sweep_kinds()) {
+    panels.push_back(panel_series(rows, category, partial, kind));
+    any = any || !panels.back().empty();
+  }
+  if (!any) return false;
+  const int width = 1000, height = 760;
+  cairo_surface_t* surface = cairo_image_surface_create(CAIRO_FORMAT_RGB24, width, height);
+  cairo_t* cr = cairo_create(surface);
+  cairo_set_source_rgb(cr, 1, 1, 1);
+  cairo_paint(cr);
+  cairo_select_font_face(cr, "sans-serif", CAIRO_FONT_SLANT_NORMAL, CAIRO_FONT_WEIGHT_NORMAL);
+  cairo_set_source_rgb(cr, 0, 0, 0);
+  text(cr, width / 2.0, 28,
+       category + ", " + (partial ? "partial views" : "full views") + ": mean Eq. 5 x 1e4 against the level",
+       17, 0.5);
+  draw_legend(cr, 24, 56, variants_of(rows));
+  for (std::size_t k = 0; k < panels.size(); ++k) {
+    const Box box{double(k % 2) * width / 2, 70 + double(k / 2) * (height - 70) / 2, width / 2.0,
+                  (height - 70) / 2.0};
+    draw_panel(cr, box, sweep_kinds()[k], panels[k]);
+  }
+  cairo_destroy(cr);
+  const cairo_status_t status = cairo_surface_write_to_png(surface, path.c_str());
+  cairo_surface_destroy(surface);
+  if (status != CAIRO_STATUS_SUCCESS)
+    throw InputError("cannot write " + path.string() + ": " + cairo_status_to_string(status));
+  return true;
+}
+
+}  // namespace partreg::eval
