@@ -25,6 +25,8 @@ int main(int argc, char** argv) {
   partreg::app::add_label_command(app);
   partreg::app::add_register_command(app);
   partreg::app::add_render_commands(app);
+  partreg::app::add_views_command(app);
+  partreg::app::add_eval_command(app);
 
   try {
     app.parse(argc, argv);
