@@ -50,7 +50,7 @@ void write_figure(const render::Image& image, const std::string& out,
 
 void run_compare(const FigureOptions& options) {
   const auto start = std::chrono::steady_clock::now();
-  const render::FigureSettings settings = figure_settings(options, "640x480");
+  const render::FigureSettings settings = figure_settings(options, "640x360");
   std::vector<core::RegistrationSettings> runs;
   for (const std::string& variant : split_commas(options.variants)) {
     core::RegistrationSettings run;
@@ -117,7 +117,7 @@ void add_figure_command(CLI::App& app) {
       ->capture_default_str();
   compare->add_flag("--align-axes", o->align_axes, "start from principal-axis rotations (poses far off)");
   compare->add_flag("--scale", o->estimate_scale, "also fit a uniform scale");
-  add_shared_options(compare, *o, "640x480");
+  add_shared_options(compare, *o, "640x360");
   compare->callback([o] { run_compare(*o); });
 
   CLI::App* space = figure->add_subcommand(

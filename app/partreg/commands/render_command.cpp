@@ -71,7 +71,7 @@ void add_file(render::Scene& scene, const std::string& path, int index, const Re
 }
 
 render::Camera camera_of(const RenderOptions& options, const render::Scene& scene, double aspect) {
-  render::Camera camera = render::fit_camera(scene.bounds(), render::parse_view(options.view), aspect);
+  render::Camera camera = render::fit_camera(scene.all_points(), render::parse_view(options.view), aspect);
   if (options.eye.empty() != options.target.empty()) throw UsageError("--eye and --target go together");
   if (!options.eye.empty()) {
     camera.eye = parse_vector3(options.eye, "--eye");

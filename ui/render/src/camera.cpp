@@ -12,6 +12,13 @@ namespace {
 constexpr double kPi = 3.14159265358979323846;
 double radians(double degrees) { return degrees * kPi / 180.0; }
 
+Bounds unit_box_around(const Eigen::Vector3d& centre) {
+  Bounds box;
+  box.extend(Eigen::Vector3d(centre - Eigen::Vector3d::Constant(0.5)));
+  box.extend(Eigen::Vector3d(centre + Eigen::Vector3d::Constant(0.5)));
+  return box;
+}
+
 }  // namespace
 
 void Bounds::extend(const Eigen::Vector3d& point) {
@@ -102,36 +109,55 @@ OrbitCamera named_orbit(View view) {
   return orbit;
 }
 
-Camera fit_camera(const Bounds& bounds, View view, double aspect, double margin, double fov_y_deg) {
-  Bounds box = bounds;
+Camera fit_camera(const core::Points& points, View view, double aspect, double margin, double fov_y_deg) {
+  Bounds box;
+  box.extend(points);
   if (box.empty() || box.diagonal() == 0.0) {
     const Eigen::Vector3d centre = box.empty() ? Eigen::Vector3d::Zero() : box.centre();
-    box = Bounds();
-    box.extend(Eigen::Vector3d(centre - Eigen::Vector3d::Constant(0.5)));
-    box.extend(Eigen::Vector3d(centre + Eigen::Vector3d::Constant(0.5)));
+    return fit_camera(unit_box_around(centre), view, aspect, margin, fov_y_deg);
   }
   OrbitCamera orbit = named_orbit(view);
-  orbit.target = box.centre();
   orbit.fov_y_deg = fov_y_deg;
-  const Camera unit = orbit.camera();  // distance 1: gives the view's axes
+  const Camera unit = orbit.camera();  // gives the view's axes
   const Eigen::Vector3d backward = (unit.eye - unit.target).normalized();
   const Eigen::Vector3d right = unit.right();
   const Eigen::Vector3d up = backward.cross(right);
-  const double tan_y = std::tan(0.5 * radians(fov_y_deg)), tan_x = tan_y * aspect;
-  // The eye at distance d sees a corner at (x, y, z) (camera axes, z towards the eye) when
-  // |x| <= (d - z) tan_x and |y| <= (d - z) tan_y: the nearest d that holds every corner.
-  double distance = 0.0;
-  for (int corner = 0; corner < 8; ++corner) {
-    const Eigen::Vector3d point((corner & 1) ? box.max.x() : box.min.x(),
-                                (corner & 2) ? box.max.y() : box.min.y(),
-                                (corner & 4) ? box.max.z() : box.min.z());
-    const Eigen::Vector3d offset = point - box.centre();
-    const double z = offset.dot(backward);
-    distance = std::max({distance, z + margin * std::abs(offset.dot(right)) / tan_x,
-                         z + margin * std::abs(offset.dot(up)) / tan_y});
+  Eigen::Matrix3d axes;
+  axes << right.transpose(), up.transpose(), backward.transpose();
+  // The points in the view's axes; the target goes to the middle of their extent along each axis.
+  Eigen::Vector3d low = Eigen::Vector3d::Constant(std::numeric_limits<double>::infinity());
+  Eigen::Vector3d high = -low;
+  for (Eigen::Index i = 0; i < points.rows(); ++i) {
+    if (!points.row(i).allFinite()) continue;
+    const Eigen::Vector3d in_view = axes * points.row(i).transpose();
+    low = low.cwiseMin(in_view);
+    high = high.cwiseMax(in_view);
   }
-  orbit.distance = distance;
+  const Eigen::Vector3d middle = 0.5 * (low + high);
+  orbit.target = axes.transpose() * middle;
+  // The eye at distance d sees a point at (x, y, z) (view axes about the target, z towards the eye) when
+  // |x| <= (d - z) tan_x and |y| <= (d - z) tan_y: the nearest d that holds every point.
+  const double tan_y = std::tan(0.5 * radians(fov_y_deg)), tan_x = tan_y * aspect;
+  double distance = 0.0;
+  for (Eigen::Index i = 0; i < points.rows(); ++i) {
+    if (!points.row(i).allFinite()) continue;
+    const Eigen::Vector3d p = axes * points.row(i).transpose() - middle;
+    distance = std::max(
+        {distance, p.z() + margin * std::abs(p.x()) / tan_x, p.z() + margin * std::abs(p.y()) / tan_y});
+  }
+  orbit.distance = std::max(distance, 1e-3 * box.diagonal());
   return orbit.camera();
+}
+
+Camera fit_camera(const Bounds& bounds, View view, double aspect, double margin, double fov_y_deg) {
+  const Bounds box = bounds.empty() || bounds.diagonal() == 0.0
+                         ? unit_box_around(bounds.empty() ? Eigen::Vector3d::Zero() : bounds.centre())
+                         : bounds;
+  core::Points corners(8, 3);
+  for (int corner = 0; corner < 8; ++corner)
+    corners.row(corner) << ((corner & 1) ? box.max.x() : box.min.x()),
+        ((corner & 2) ? box.max.y() : box.min.y()), ((corner & 4) ? box.max.z() : box.min.z());
+  return fit_camera(corners, view, aspect, margin, fov_y_deg);
 }
 
 Eigen::Vector2d clip_range(const Camera& camera, const Bounds& bounds) {

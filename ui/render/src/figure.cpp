@@ -93,13 +93,17 @@ Image render_grid(const Grid& grid, const FigureSettings& settings) {
   render_settings.samples = settings.samples;
   render_settings.background = settings.background;
   HeadlessRenderer renderer(render_settings);
-  Bounds all;
-  for (const Panel& panel : grid.panels) all.extend(panel.scene.bounds());
+  Scene all;  // every panel's geometry together, for the shared camera
+  for (const Panel& panel : grid.panels)
+    all.point_sets.push_back({panel.scene.all_points(), {}, Color::Zero(), 0.0});
+  const core::Points shared_points = all.all_points();
   const double aspect = static_cast<double>(settings.panel_width) / settings.panel_height;
   for (std::size_t i = 0; i < grid.panels.size(); ++i) {
     const Panel& panel = grid.panels[i];
-    const Bounds bounds = settings.shared_camera ? all : panel.scene.bounds();
-    const Image image = renderer.render(panel.scene, fit_camera(bounds, settings.view, aspect));
+    const Camera camera =
+        fit_camera(settings.shared_camera ? shared_points : panel.scene.all_points(), settings.view, aspect,
+                   /*margin=*/1.05, settings.fov_y_deg);
+    const Image image = renderer.render(panel.scene, camera);
     const int x = left + static_cast<int>(i) % columns * (settings.panel_width + kGap);
     const int y = top + static_cast<int>(i) / columns * (settings.panel_height + kGap);
     blit(canvas, image, x, y);

@@ -21,7 +21,7 @@ Image HeadlessRenderer::render(const Scene& scene, const Camera& camera) {
 
 Image HeadlessRenderer::render(const Scene& scene, View view) {
   const RenderSettings& size = renderer_->settings();
-  return render(scene, fit_camera(scene.bounds(), view, static_cast<double>(size.width) / size.height));
+  return render(scene, fit_camera(scene.all_points(), view, static_cast<double>(size.width) / size.height));
 }
 
 }  // namespace partreg::render

@@ -77,11 +77,13 @@ core::Points centred(const core::Points& points, const Eigen::Vector3d& origin) 
   return points.rowwise() - origin.transpose();
 }
 
-// About a third of the spacing of N points spread over a surface the size of the scene, kept between 0.15%
-// and 1% of the diagonal: sparse clouds still show their surface and dense ones stay crisp.
-double automatic_radius(const PointSet& set, double diagonal) {
-  const double scale = diagonal > 0.0 ? diagonal : 1.0;
-  return scale * std::clamp(0.4 / std::sqrt(static_cast<double>(set.positions.rows())), 0.0015, 0.01);
+// About a third of the spacing of N points spread over a surface the size of the set, kept between 0.15%
+// and 1% of its diagonal: sparse clouds still show their surface and dense ones stay crisp.
+double automatic_radius(const PointSet& set) {
+  Bounds bounds;
+  bounds.extend(set.positions);
+  const double diagonal = bounds.diagonal() > 0.0 ? bounds.diagonal() : 1.0;
+  return diagonal * std::clamp(0.4 / std::sqrt(static_cast<double>(set.positions.rows())), 0.0015, 0.01);
 }
 
 }  // namespace
@@ -178,7 +180,6 @@ void Renderer::draw(const Scene& scene, const Camera& camera) {
   glDisable(GL_BLEND);
   glDisable(GL_CULL_FACE);
   glBindVertexArray(gpu.vertex_array.get());
-  const double diagonal = bounds.diagonal();
 
   // Meshes first (the densest depth), then splats and lines.
   const GLuint mesh_program = gpu.mesh_program.get();
@@ -236,7 +237,7 @@ void Renderer::draw(const Scene& scene, const Camera& camera) {
     upload_attribute(gpu.positions.get(), 0, centred(set.positions, frame.origin));
     upload_attribute(gpu.colors.get(), 1,
                      colors_or(set.colors, set.color, set.positions.rows(), "a point set"));
-    const double radius = set.radius > 0.0 ? set.radius : automatic_radius(set, diagonal);
+    const double radius = set.radius > 0.0 ? set.radius : automatic_radius(set);
     glUniform1f(glGetUniformLocation(splat_program, "radius"), static_cast<float>(radius));
     glDrawArrays(GL_POINTS, 0, static_cast<GLsizei>(set.positions.rows()));
     glDisableVertexAttribArray(1);

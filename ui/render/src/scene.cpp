@@ -27,6 +27,26 @@ Bounds Scene::bounds() const {
   return bounds;
 }
 
+core::Points Scene::all_points() const {
+  Eigen::Index count = 0;
+  for (const PointSet& set : point_sets) count += set.positions.rows();
+  for (const MeshItem& item : meshes) count += item.mesh.vertices.rows();
+  for (const LineSet& set : line_sets) count += set.starts.rows() + set.ends.rows();
+  core::Points points(count, 3);
+  Eigen::Index row = 0;
+  const auto append = [&](const core::Points& block) {
+    points.middleRows(row, block.rows()) = block;
+    row += block.rows();
+  };
+  for (const PointSet& set : point_sets) append(set.positions);
+  for (const MeshItem& item : meshes) append(item.mesh.vertices);
+  for (const LineSet& set : line_sets) {
+    append(set.starts);
+    append(set.ends);
+  }
+  return points;
+}
+
 Colors part_colors(const Eigen::VectorXi& part) {
   Colors colors(part.size(), 3);
   for (Eigen::Index i = 0; i < part.size(); ++i) colors.row(i) = part_color(part[i]).transpose();

@@ -61,8 +61,14 @@ struct OrbitCamera {
 /// The orbit camera of a named view at unit distance around the origin.
 OrbitCamera named_orbit(View view);
 
-/// A camera of `view` that frames `bounds` (its bounding sphere fits the narrower field of view, with
-/// `margin` to spare) for an image of width/height `aspect`. An empty box gets the unit box.
+/// A camera of `view` that frames `points` tightly for an image of width/height `aspect`: the target is the
+/// middle of their extent across the view, and the eye is as close as it can be with every point inside the
+/// image, `margin` times further from the image's centre than needed. Non-finite points are ignored; no
+/// points (or all in one place) frame the unit box around them.
+Camera fit_camera(const core::Points& points, View view, double aspect, double margin = 1.05,
+                  double fov_y_deg = 30.0);
+
+/// The camera of `view` that frames the corners of `bounds` (as above).
 Camera fit_camera(const Bounds& bounds, View view, double aspect, double margin = 1.05,
                   double fov_y_deg = 30.0);
 

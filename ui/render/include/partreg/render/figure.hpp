@@ -30,9 +30,10 @@ struct Grid {
 
 struct FigureSettings {
   int panel_width = 640;   ///< pixels per panel
-  int panel_height = 480;  ///< pixels per panel
+  int panel_height = 360;  ///< pixels per panel
   int samples = 4;         ///< multisample antialiasing samples per pixel
   View view = View::iso;
+  double fov_y_deg = 20.0;  ///< vertical field of view (degrees); narrow, so side-by-side shapes look alike
   Background background = Background::white;
   int text_scale = 2;         ///< pixels per font unit of titles and labels
   bool shared_camera = true;  ///< one camera fitted to every panel, so sizes compare across panels

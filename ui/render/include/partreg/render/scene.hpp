@@ -53,6 +53,8 @@ struct Scene {
   bool empty() const;
   /// The box around every point, vertex and segment end.
   Bounds bounds() const;
+  /// Every point, mesh vertex and segment end, one per row (what cameras are fitted to).
+  core::Points all_points() const;
 };
 
 /// One colour per index from the part palette (negative index: grey).
