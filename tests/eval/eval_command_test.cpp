@@ -9,26 +9,15 @@
 #include <sstream>
 
 #include "partreg/eval/report.hpp"
+#include "support/run_partreg.hpp"
 #include "support/temp_dir.hpp"
 
 namespace partreg {
 namespace {
 
-struct Outcome {
-  int exit_code = -1;
-  std::string output;
-};
+using testing::Outcome;
 
-Outcome run(const std::string& arguments) {
-  const std::string command = std::string(PARTREG_EXECUTABLE) + " " + arguments + " 2>&1";
-  Outcome result;
-  FILE* pipe = popen(command.c_str(), "r");
-  std::array<char, 4096> buffer{};
-  while (std::fgets(buffer.data(), buffer.size(), pipe)) result.output += buffer.data();
-  const int status = pclose(pipe);
-  result.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  return result;
-}
+Outcome run(const std::string& arguments) { return testing::run_partreg(arguments); }
 
 std::string read_text(const std::filesystem::path& path) {
   std::ifstream in(path);

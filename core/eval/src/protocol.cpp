@@ -51,13 +51,23 @@ std::uint64_t mix(std::uint64_t seed, std::uint64_t value) {
   return z ^ (z >> 31);
 }
 
+// The observations the sweeps perturb: the full view and `sweep_views` partial views spread evenly over the
+// direction list (every k-th), so that they look at the object from all round.
+std::vector<std::size_t> swept_observations(const TestCase& test, const Protocol& protocol) {
+  std::vector<std::size_t> swept = {0};
+  const std::size_t partial = test.observations.size() - 1;
+  const std::size_t count = std::min<std::size_t>(partial, static_cast<std::size_t>(protocol.sweep_views));
+  for (std::size_t i = 0; i < count; ++i) swept.push_back(1 + i * partial / count);
+  return swept;
+}
+
 std::vector<Job> plan_jobs(const TestCase& test, const Protocol& protocol) {
   std::vector<Job> jobs;
   for (std::size_t o = 0; o < test.observations.size(); ++o) jobs.push_back({o, Perturbation::none, -1});
-  const std::size_t swept = std::min<std::size_t>(test.observations.size(), 1 + protocol.sweep_views);
+  const std::vector<std::size_t> swept = swept_observations(test, protocol);
   for (Perturbation kind : sweep_kinds())
     for (int level : protocol.levels)
-      for (std::size_t o = 0; o < swept; ++o) jobs.push_back({o, kind, level});
+      for (std::size_t o : swept) jobs.push_back({o, kind, level});
   return jobs;
 }
 

@@ -22,13 +22,13 @@ namespace partreg::eval {
 struct Protocol {
   std::string name = "paper";
   int views = 42;        ///< partial views per instance (a tessellated sphere's vertex count; 0 = none)
-  int sweep_views = 12;  ///< of those, how many also get the perturbation sweeps (the first ones)
+  int sweep_views = 6;  ///< of those, how many also get the perturbation sweeps (spread evenly, every k-th)
   std::vector<int> levels = {0, 1, 2, 3, 4};  ///< which of the paper's five levels each sweep uses
   int max_test_instances = 0;                 ///< 0 = every instance; else that many, evenly spread
   int folds = 0;                              ///< 0 = leave-one-out; else k folds
 };
 
-/// "paper": 42 views, sweeps on the full view and 12 partial views at all five levels, leave-one-out.
+/// "paper": 42 views, sweeps on the full view and 6 partial views at all five levels, leave-one-out.
 /// "quick": 12 views, sweeps on the full view and 2 partial views at levels 1, 3 and 5, 2 test instances.
 /// UsageError for another name.
 Protocol protocol_by_name(const std::string& name);
