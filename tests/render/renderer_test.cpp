@@ -146,23 +146,36 @@ TEST(Renderer, TransparentBackground) {
 }
 
 TEST(Renderer, AntialiasingSoftensEdges) {
-  // On a transparent background a silhouette without multisampling is all-or-nothing in alpha; with it, the
-  // rim pixels are partly covered.
+  // On a transparent background a silhouette without antialiasing is all-or-nothing in alpha; with either
+  // kind, the rim pixels are partly covered.
   MeshItem sphere;
   sphere.mesh = testing::uv_sphere(1.0, 24, 48);
   Scene scene;
   scene.meshes.push_back(sphere);
-  const auto partly_covered = [&](int samples) {
+  const auto partly_covered = [&](Antialiasing antialiasing) {
     RenderSettings settings = small(Background::transparent);
-    settings.samples = samples;
+    settings.antialiasing = antialiasing;
     HeadlessRenderer renderer(settings);
     const Image image = renderer.render(scene, View::front);
     int count = 0;
     for (std::size_t i = 3; i < image.rgba.size(); i += 4) count += image.rgba[i] > 0 && image.rgba[i] < 255;
     return count;
   };
-  EXPECT_EQ(partly_covered(1), 0);
-  EXPECT_GT(partly_covered(4), 100);
+  EXPECT_EQ(partly_covered(Antialiasing::none), 0);
+  EXPECT_GT(partly_covered(Antialiasing::multisample), 100);
+  EXPECT_GT(partly_covered(Antialiasing::edge), 100);
+}
+
+TEST(Renderer, EdgeSmoothedSplatsAndMesh) {
+  RenderSettings settings = small();
+  settings.antialiasing = Antialiasing::edge;
+  HeadlessRenderer renderer(settings);
+  Scene scene = mug_scene();
+  MeshItem sphere;
+  sphere.mesh = testing::uv_sphere(0.3, 16, 32, Eigen::Vector3d(-0.9, 0.0, 0.0));
+  sphere.color = part_color(2);
+  scene.meshes.push_back(sphere);
+  expect_matches_baseline(renderer.render(scene, View::front), "edge_smoothed_mug_and_sphere_front");
 }
 
 TEST(Renderer, EmptySceneIsBlankWithAWarning) {

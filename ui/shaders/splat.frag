@@ -1,7 +1,9 @@
-// A shaded sphere impostor on each point sprite. Alpha carries the pixel's coverage of the disc: with
-// multisampling, alpha-to-coverage turns it into a smooth rim.
+// A shaded sphere impostor on each point sprite. With multisampling, alpha carries the pixel's coverage of
+// the disc and alpha-to-coverage turns it into a smooth rim; without, the disc is cut at its rim.
 in vec3 splat_color;
 in float splat_pixels;
+
+uniform int rim_coverage;  // 1: alpha-to-coverage is on
 
 out vec4 frag_color;
 
@@ -12,5 +14,7 @@ void main() {
   if (r2 > 1.0 + 2.0 / splat_pixels) discard;
   float edge_pixels = (1.0 - sqrt(r2)) * 0.5 * splat_pixels;  // signed distance to the rim
   vec3 normal = vec3(p.x, -p.y, sqrt(max(1.0 - r2, 0.0)));   // point coordinates run down the sprite
-  frag_color = vec4(shade(splat_color, normal, vec3(0.0, 0.0, 1.0)), clamp(edge_pixels + 0.5, 0.0, 1.0));
+  float coverage = clamp(edge_pixels + 0.5, 0.0, 1.0);
+  if (rim_coverage == 0 && coverage < 0.5) discard;
+  frag_color = vec4(shade(splat_color, normal, vec3(0.0, 0.0, 1.0)), rim_coverage == 1 ? coverage : 1.0);
 }

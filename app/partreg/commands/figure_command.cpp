@@ -19,7 +19,8 @@ struct FigureOptions {
   std::string model_path, observed_path, variants = "holistic,hol+part", space = "holistic", out;
   std::string size, view = "iso", background = "white";
   std::size_t observed_samples = 3000;
-  int samples = 4, restarts = 1;
+  std::string antialias = "msaa";
+  int restarts = 1;
   bool align_axes = false, estimate_scale = false;
 };
 
@@ -29,7 +30,7 @@ render::FigureSettings figure_settings(const FigureOptions& options, const std::
       parse_size(options.size.empty() ? default_size : options.size, "--size");
   settings.view = render::parse_view(options.view);
   settings.background = render::parse_background(options.background);
-  settings.samples = options.samples;
+  settings.antialiasing = render::parse_antialiasing(options.antialias);
   return settings;
 }
 
@@ -92,7 +93,7 @@ void add_shared_options(CLI::App* command, FigureOptions& o, const char* default
                       std::string("size of each panel, WIDTHxHEIGHT (default ") + default_size + ")");
   command->add_option("--view", o.view, "iso | front | side | top (+Y up)")->capture_default_str();
   command->add_option("--background", o.background, "white | transparent")->capture_default_str();
-  command->add_option("--samples", o.samples, "antialiasing samples per pixel (1: none)")
+  command->add_option("--antialias", o.antialias, "msaa (4 samples) | edge (fast) | none")
       ->capture_default_str();
 }
 

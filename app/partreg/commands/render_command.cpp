@@ -22,7 +22,7 @@ struct RenderOptions {
   std::string eye, target, up = "0,1,0";
   bool wireframe = false, flat = false;
   double point_radius = 0.0;
-  int samples = 4;
+  std::string antialias = "msaa";
 };
 
 // The part of each vertex of a PLY mesh written by partreg (`register --mesh-out`, `label`): read as a
@@ -88,7 +88,7 @@ void run_render(const RenderOptions& options) {
     throw UsageError("--color-by takes part, file or none, not '" + options.color_by + "'");
   render::RenderSettings settings;
   std::tie(settings.width, settings.height) = parse_size(options.size, "--size");
-  settings.samples = options.samples;
+  settings.antialiasing = render::parse_antialiasing(options.antialias);
   settings.background = render::parse_background(options.background);
   render::parse_view(options.view);
   render::Scene scene;
@@ -138,7 +138,7 @@ void add_render_commands(CLI::App& app) {
   command->add_option("--up", o->up, "X,Y,Z up direction of the camera")->capture_default_str();
   command->add_option("--point-radius", o->point_radius, "splat radius in data units (0: automatic)")
       ->capture_default_str();
-  command->add_option("--samples", o->samples, "antialiasing samples per pixel (1: none)")
+  command->add_option("--antialias", o->antialias, "msaa (4 samples) | edge (fast) | none")
       ->capture_default_str();
   command->add_flag("--wireframe", o->wireframe, "draw mesh edges over the surfaces");
   command->add_flag("--flat", o->flat, "flat shading of meshes (one normal per triangle)");

@@ -90,7 +90,7 @@ Image render_grid(const Grid& grid, const FigureSettings& settings) {
   RenderSettings render_settings;
   render_settings.width = settings.panel_width;
   render_settings.height = settings.panel_height;
-  render_settings.samples = settings.samples;
+  render_settings.antialiasing = settings.antialiasing;
   render_settings.background = settings.background;
   HeadlessRenderer renderer(render_settings);
   Scene all;  // every panel's geometry together, for the shared camera

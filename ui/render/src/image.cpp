@@ -47,6 +47,35 @@ void blit(Image& canvas, const Image& source, int x, int y) {
     }
 }
 
+void smooth_edges(Image& image) {
+  const int width = image.width, height = image.height;
+  if (width < 3 || height < 3) return;
+  std::vector<int> luma(static_cast<std::size_t>(width) * height);
+  for (std::size_t i = 0; i < luma.size(); ++i)
+    luma[i] = (77 * image.rgba[4 * i] + 150 * image.rgba[4 * i + 1] + 29 * image.rgba[4 * i + 2]) >> 8;
+  const Image source = image;
+  for (int y = 1; y + 1 < height; ++y)
+    for (int x = 1; x + 1 < width; ++x) {
+      const auto l = [&](int dx, int dy) { return luma[static_cast<std::size_t>(y + dy) * width + x + dx]; };
+      const int c = l(0, 0), n = l(0, -1), s = l(0, 1), e = l(1, 0), w = l(-1, 0);
+      const int low = std::min({c, n, s, e, w}), high = std::max({c, n, s, e, w});
+      if (high - low < std::max(13, high / 8)) continue;
+      // Sobel gradient (y down); the edge runs across it.
+      const int gx = l(1, -1) + 2 * e + l(1, 1) - l(-1, -1) - 2 * w - l(-1, 1);
+      const int gy = l(-1, 1) + 2 * s + l(1, 1) - l(-1, -1) - 2 * n - l(1, -1);
+      const int ax = -gy, ay = gx;
+      int sx = ax > 0 ? 1 : -1, sy = ay > 0 ? 1 : -1;
+      if (std::abs(ax) * 5 > std::abs(ay) * 12) sy = 0;  // within 22.5 degrees of horizontal
+      if (std::abs(ay) * 5 > std::abs(ax) * 12) sx = 0;  // within 22.5 degrees of vertical
+      const std::uint8_t* forward = source.pixel(x + sx, y + sy);
+      const std::uint8_t* backward = source.pixel(x - sx, y - sy);
+      const std::uint8_t* centre = source.pixel(x, y);
+      std::uint8_t* out = image.pixel(x, y);
+      for (int k = 0; k < 4; ++k)
+        out[k] = static_cast<std::uint8_t>((2 * centre[k] + forward[k] + backward[k] + 2) / 4);
+    }
+}
+
 void write_png(const std::filesystem::path& path, const Image& image) {
   if (image.empty()) throw InputError("cannot write image " + path.string() + ": the image is empty");
   std::vector<unsigned char> bytes;

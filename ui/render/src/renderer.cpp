@@ -18,8 +18,8 @@ using detail::Program;
 using detail::Renderbuffer;
 using detail::VertexArray;
 
-// GL state of one renderer: programs, the multisampled framebuffer drawn into and the single-sampled one
-// it is resolved into, and the buffers reused from frame to frame.
+// GL state of one renderer: programs, the framebuffer drawn into (multisampled or not) and the
+// single-sampled one it is resolved into, and the buffers reused from frame to frame.
 struct Renderer::Gpu {
   Program splat_program, mesh_program, line_program;
   Framebuffer draw_framebuffer, resolved_framebuffer;
@@ -29,8 +29,21 @@ struct Renderer::Gpu {
   Buffer positions, normals, colors, indices;
 };
 
+namespace detail {
+
+// What every pass needs to know about the frame. Geometry is drawn relative to `origin` (the scene's
+// centre): floats keep their precision for data far from the origin (sensor frames, survey coordinates).
+struct FrameState {
+  Eigen::Vector3d origin;
+  Eigen::Matrix4f view, projection;
+  int width = 0, height = 0;
+};
+
+}  // namespace detail
+
 namespace {
 
+using Frame = detail::FrameState;
 using FloatRows = Eigen::Matrix<float, Eigen::Dynamic, 3, Eigen::RowMajor>;
 
 void check_gl(const char* what) {
@@ -41,7 +54,7 @@ void check_gl(const char* what) {
   throw InputError(std::string("OpenGL error ") + code + " while " + what);
 }
 
-// Uploads rows as a float attribute at `location` (a zero-row matrix leaves the attribute disabled).
+// Uploads rows as a float attribute at `location`.
 template <typename Rows>
 void upload_attribute(GLuint buffer, GLuint location, const Rows& rows) {
   const FloatRows data = rows.template cast<float>();
@@ -61,20 +74,36 @@ Colors colors_or(const Colors& colors, const Color& color, Eigen::Index count, c
   return colors;
 }
 
-void set_matrix(GLuint program, const char* name, const Eigen::Matrix4f& matrix) {
-  glUniformMatrix4fv(glGetUniformLocation(program, name), 1, GL_FALSE, matrix.data());  // column-major
-}
+GLint uniform(GLuint program, const char* name) { return glGetUniformLocation(program, name); }
 
-// Scene coordinates relative to `origin` (the scene's centre): floats keep their precision for data far
-// from the origin (sensor frames in metres, miles from zero).
-struct Frame {
-  Eigen::Vector3d origin;
-  Eigen::Matrix4f view, projection;
-  int width, height;
-};
+void use_program(GLuint program, const Frame& frame) {
+  glUseProgram(program);
+  glUniformMatrix4fv(uniform(program, "view"), 1, GL_FALSE, frame.view.data());  // column-major
+  glUniformMatrix4fv(uniform(program, "projection"), 1, GL_FALSE, frame.projection.data());
+}
 
 core::Points centred(const core::Points& points, const Eigen::Vector3d& origin) {
   return points.rowwise() - origin.transpose();
+}
+
+Frame make_frame(const Scene& scene, const Camera& camera, int width, int height) {
+  const Bounds bounds = scene.bounds();
+  Frame frame;
+  frame.origin = bounds.empty() ? camera.target : bounds.centre();
+  Camera shifted = camera;
+  shifted.eye -= frame.origin;
+  shifted.target -= frame.origin;
+  Bounds shifted_bounds;
+  if (!bounds.empty()) {
+    shifted_bounds.extend(Eigen::Vector3d(bounds.min - frame.origin));
+    shifted_bounds.extend(Eigen::Vector3d(bounds.max - frame.origin));
+  }
+  const Eigen::Vector2d clip = clip_range(shifted, shifted_bounds);
+  frame.width = width;
+  frame.height = height;
+  frame.view = shifted.view_matrix();
+  frame.projection = shifted.projection_matrix(static_cast<double>(width) / height, clip[0], clip[1]);
+  return frame;
 }
 
 // About a third of the spacing of N points spread over a surface the size of the set, kept between 0.15%
@@ -86,12 +115,39 @@ double automatic_radius(const PointSet& set) {
   return diagonal * std::clamp(0.4 / std::sqrt(static_cast<double>(set.positions.rows())), 0.0015, 0.01);
 }
 
+Renderbuffer make_renderbuffer(GLenum format, int samples, int width, int height) {
+  GLuint name = 0;
+  glGenRenderbuffers(1, &name);
+  glBindRenderbuffer(GL_RENDERBUFFER, name);
+  // One sample is asked for as 0: a request for 1 may be rounded up to the smallest multisample count.
+  glRenderbufferStorageMultisample(GL_RENDERBUFFER, samples > 1 ? samples : 0, format, width, height);
+  return Renderbuffer(name);
+}
+
+Framebuffer make_framebuffer(GLuint color, GLuint depth) {
+  GLuint name = 0;
+  glGenFramebuffers(1, &name);
+  glBindFramebuffer(GL_FRAMEBUFFER, name);
+  glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_RENDERBUFFER, color);
+  if (depth != 0) glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_RENDERBUFFER, depth);
+  if (glCheckFramebufferStatus(GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE)
+    throw InputError("the renderer's framebuffer is incomplete on this OpenGL");
+  return Framebuffer(name);
+}
+
 }  // namespace
 
 Background parse_background(const std::string& name) {
   if (name == "white") return Background::white;
   if (name == "transparent") return Background::transparent;
   throw UsageError("unknown background '" + name + "' (white | transparent)");
+}
+
+Antialiasing parse_antialiasing(const std::string& name) {
+  if (name == "msaa") return Antialiasing::multisample;
+  if (name == "edge") return Antialiasing::edge;
+  if (name == "none") return Antialiasing::none;
+  throw UsageError("unknown antialiasing '" + name + "' (msaa | edge | none)");
 }
 
 Renderer::Renderer(const RenderSettings& settings) : settings_(settings), gpu_(std::make_unique<Gpu>()) {
@@ -118,165 +174,135 @@ void Renderer::resize(int width, int height) {
   settings_.width = width;
   settings_.height = height;
   Gpu& gpu = *gpu_;
-  gpu.samples = std::clamp(settings_.samples, 1, std::max(1, static_cast<int>(max_samples)));
-  const auto make_renderbuffer = [&](GLenum format, int samples) {
-    GLuint name = 0;
-    glGenRenderbuffers(1, &name);
-    glBindRenderbuffer(GL_RENDERBUFFER, name);
-    glRenderbufferStorageMultisample(GL_RENDERBUFFER, samples, format, width, height);
-    return Renderbuffer(name);
-  };
-  const auto make_framebuffer = [](std::initializer_list<std::pair<GLenum, GLuint>> attachments) {
-    GLuint name = 0;
-    glGenFramebuffers(1, &name);
-    glBindFramebuffer(GL_FRAMEBUFFER, name);
-    for (const auto& [point, renderbuffer] : attachments)
-      glFramebufferRenderbuffer(GL_FRAMEBUFFER, point, GL_RENDERBUFFER, renderbuffer);
-    if (glCheckFramebufferStatus(GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE)
-      throw InputError("the renderer's framebuffer is incomplete on this OpenGL");
-    return Framebuffer(name);
-  };
-  // One sample is asked for as 0: a request for 1 may be rounded up to the driver's smallest multisample
-  // count.
-  const int storage_samples = gpu.samples > 1 ? gpu.samples : 0;
-  gpu.draw_color = make_renderbuffer(GL_RGBA8, storage_samples);
-  gpu.draw_depth = make_renderbuffer(GL_DEPTH_COMPONENT24, storage_samples);
-  gpu.resolved_color = make_renderbuffer(GL_RGBA8, 0);
-  gpu.draw_framebuffer = make_framebuffer(
-      {{GL_COLOR_ATTACHMENT0, gpu.draw_color.get()}, {GL_DEPTH_ATTACHMENT, gpu.draw_depth.get()}});
-  gpu.resolved_framebuffer = make_framebuffer({{GL_COLOR_ATTACHMENT0, gpu.resolved_color.get()}});
+  gpu.samples = settings_.antialiasing == Antialiasing::multisample
+                    ? std::clamp(settings_.samples, 1, std::max(1, static_cast<int>(max_samples)))
+                    : 1;
+  gpu.draw_depth = make_renderbuffer(GL_DEPTH_COMPONENT24, gpu.samples, width, height);
+  gpu.draw_color = make_renderbuffer(GL_RGBA8, gpu.samples, width, height);
+  gpu.draw_framebuffer = make_framebuffer(gpu.draw_color.get(), gpu.draw_depth.get());
+  gpu.resolved_color = make_renderbuffer(GL_RGBA8, 1, width, height);
+  gpu.resolved_framebuffer = make_framebuffer(gpu.resolved_color.get(), 0);
   check_gl("creating the framebuffer");
 }
 
 void Renderer::draw(const Scene& scene, const Camera& camera) {
-  Gpu& gpu = *gpu_;
-  const Bounds bounds = scene.bounds();
-  Frame frame;
-  frame.origin = bounds.empty() ? camera.target : bounds.centre();
-  Camera shifted = camera;
-  shifted.eye -= frame.origin;
-  shifted.target -= frame.origin;
-  Bounds shifted_bounds;
-  if (!bounds.empty()) {
-    shifted_bounds.extend(Eigen::Vector3d(bounds.min - frame.origin));
-    shifted_bounds.extend(Eigen::Vector3d(bounds.max - frame.origin));
-  }
-  const Eigen::Vector2d clip = clip_range(shifted, shifted_bounds);
-  frame.width = settings_.width;
-  frame.height = settings_.height;
-  frame.view = shifted.view_matrix();
-  frame.projection =
-      shifted.projection_matrix(static_cast<double>(frame.width) / frame.height, clip[0], clip[1]);
-
-  glBindFramebuffer(GL_FRAMEBUFFER, gpu.draw_framebuffer.get());
+  const Frame frame = make_frame(scene, camera, settings_.width, settings_.height);
+  glBindFramebuffer(GL_FRAMEBUFFER, gpu_->draw_framebuffer.get());
   glViewport(0, 0, frame.width, frame.height);
   if (settings_.background == Background::white)
     glClearColor(1.0f, 1.0f, 1.0f, 1.0f);
   else
-    glClearColor(0.0f, 0.0f, 0.0f, 0.0f);  // resolved edges are then premultiplied; read_pixels undoes it
+    glClearColor(0.0f, 0.0f, 0.0f, 0.0f);  // edges then come out premultiplied; read_pixels undoes it
   glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
   glEnable(GL_DEPTH_TEST);
   glDepthFunc(GL_LESS);
   glDisable(GL_BLEND);
   glDisable(GL_CULL_FACE);
-  glBindVertexArray(gpu.vertex_array.get());
+  glBindVertexArray(gpu_->vertex_array.get());
+  for (const MeshItem& item : scene.meshes) draw_mesh(item, frame);
+  draw_splats(scene.point_sets, frame);
+  draw_lines(scene.line_sets, frame);
+  finish_frame();
+  glBindVertexArray(0);
+  check_gl("drawing");
+}
 
-  // Meshes first (the densest depth), then splats and lines.
-  const GLuint mesh_program = gpu.mesh_program.get();
-  glUseProgram(mesh_program);
-  set_matrix(mesh_program, "view", frame.view);
-  set_matrix(mesh_program, "projection", frame.projection);
-  for (const MeshItem& item : scene.meshes) {
-    const core::Mesh& mesh = item.mesh;
-    if (mesh.faces.rows() == 0) continue;
-    if (mesh.faces.minCoeff() < 0 || mesh.faces.maxCoeff() >= mesh.vertices.rows())
-      throw UsageError("a mesh's faces index vertices it does not have");
-    upload_attribute(gpu.positions.get(), 0, centred(mesh.vertices, frame.origin));
-    upload_attribute(gpu.normals.get(), 1,
-                     mesh.normals.rows() == mesh.vertices.rows() ? mesh.normals : vertex_normals(mesh));
-    upload_attribute(gpu.colors.get(), 2,
-                     colors_or(item.vertex_colors, item.color, mesh.vertices.rows(), "a mesh"));
-    const Eigen::Matrix<GLuint, Eigen::Dynamic, 3, Eigen::RowMajor> indices = mesh.faces.cast<GLuint>();
-    glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, gpu.indices.get());
-    glBufferData(GL_ELEMENT_ARRAY_BUFFER, static_cast<GLsizeiptr>(indices.size() * sizeof(GLuint)),
-                 indices.data(), GL_STREAM_DRAW);
-    const auto count = static_cast<GLsizei>(indices.size());
-    glUniform1i(glGetUniformLocation(mesh_program, "flat_shading"), item.shading == Shading::flat ? 1 : 0);
-    glUniform1i(glGetUniformLocation(mesh_program, "solid_color"), 0);
-    if (item.wireframe) {
-      // The surface is pushed back a little so that its own edges win the depth test.
-      glEnable(GL_POLYGON_OFFSET_FILL);
-      glPolygonOffset(1.0f, 1.0f);
-    }
-    glDrawElements(GL_TRIANGLES, count, GL_UNSIGNED_INT, nullptr);
-    glDisable(GL_POLYGON_OFFSET_FILL);
-    if (item.wireframe) {
-      glUniform1i(glGetUniformLocation(mesh_program, "solid_color"), 1);
-      glUniform3fv(glGetUniformLocation(mesh_program, "wire_color"), 1, item.wire_color.data());
-      glPolygonMode(GL_FRONT_AND_BACK, GL_LINE);
-      glDrawElements(GL_TRIANGLES, count, GL_UNSIGNED_INT, nullptr);
-      glPolygonMode(GL_FRONT_AND_BACK, GL_FILL);
-    }
-    glDisableVertexAttribArray(1);
-    glDisableVertexAttribArray(2);
+void Renderer::draw_mesh(const MeshItem& item, const Frame& frame) {
+  const core::Mesh& mesh = item.mesh;
+  if (mesh.faces.rows() == 0) return;
+  if (mesh.faces.minCoeff() < 0 || mesh.faces.maxCoeff() >= mesh.vertices.rows())
+    throw UsageError("a mesh's faces index vertices it does not have");
+  Gpu& gpu = *gpu_;
+  const GLuint program = gpu.mesh_program.get();
+  use_program(program, frame);
+  upload_attribute(gpu.positions.get(), 0, centred(mesh.vertices, frame.origin));
+  upload_attribute(gpu.normals.get(), 1,
+                   mesh.normals.rows() == mesh.vertices.rows() ? mesh.normals : vertex_normals(mesh));
+  upload_attribute(gpu.colors.get(), 2,
+                   colors_or(item.vertex_colors, item.color, mesh.vertices.rows(), "a mesh"));
+  const Eigen::Matrix<GLuint, Eigen::Dynamic, 3, Eigen::RowMajor> indices = mesh.faces.cast<GLuint>();
+  glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, gpu.indices.get());
+  glBufferData(GL_ELEMENT_ARRAY_BUFFER, static_cast<GLsizeiptr>(indices.size() * sizeof(GLuint)),
+               indices.data(), GL_STREAM_DRAW);
+  const auto count = static_cast<GLsizei>(indices.size());
+  glUniform1i(uniform(program, "flat_shading"), item.shading == Shading::flat ? 1 : 0);
+  glUniform1i(uniform(program, "solid_color"), 0);
+  if (item.wireframe) {
+    // The surface is pushed back a little so that its own edges win the depth test.
+    glEnable(GL_POLYGON_OFFSET_FILL);
+    glPolygonOffset(1.0f, 1.0f);
   }
+  glDrawElements(GL_TRIANGLES, count, GL_UNSIGNED_INT, nullptr);
+  glDisable(GL_POLYGON_OFFSET_FILL);
+  if (item.wireframe) {
+    glUniform1i(uniform(program, "solid_color"), 1);
+    glUniform3fv(uniform(program, "wire_color"), 1, item.wire_color.data());
+    glPolygonMode(GL_FRONT_AND_BACK, GL_LINE);
+    glDrawElements(GL_TRIANGLES, count, GL_UNSIGNED_INT, nullptr);
+    glPolygonMode(GL_FRONT_AND_BACK, GL_FILL);
+  }
+  glDisableVertexAttribArray(1);
+  glDisableVertexAttribArray(2);
+}
 
-  const GLuint splat_program = gpu.splat_program.get();
-  glUseProgram(splat_program);
-  set_matrix(splat_program, "view", frame.view);
-  set_matrix(splat_program, "projection", frame.projection);
-  glUniform1f(glGetUniformLocation(splat_program, "viewport_height"), static_cast<float>(frame.height));
+void Renderer::draw_splats(const std::vector<PointSet>& sets, const Frame& frame) {
+  Gpu& gpu = *gpu_;
+  const GLuint program = gpu.splat_program.get();
+  use_program(program, frame);
+  glUniform1f(uniform(program, "viewport_height"), static_cast<float>(frame.height));
+  glUniform1i(uniform(program, "rim_coverage"), gpu.samples > 1 ? 1 : 0);
   glEnable(GL_PROGRAM_POINT_SIZE);
   if (gpu.samples > 1) {
     // The splat's rim coverage (its alpha) becomes sample coverage; the stored alpha is then 1.
     glEnable(GL_SAMPLE_ALPHA_TO_COVERAGE);
     glEnable(GL_SAMPLE_ALPHA_TO_ONE);
   }
-  for (const PointSet& set : scene.point_sets) {
+  for (const PointSet& set : sets) {
     if (set.positions.rows() == 0) continue;
     upload_attribute(gpu.positions.get(), 0, centred(set.positions, frame.origin));
     upload_attribute(gpu.colors.get(), 1,
                      colors_or(set.colors, set.color, set.positions.rows(), "a point set"));
     const double radius = set.radius > 0.0 ? set.radius : automatic_radius(set);
-    glUniform1f(glGetUniformLocation(splat_program, "radius"), static_cast<float>(radius));
+    glUniform1f(uniform(program, "radius"), static_cast<float>(radius));
     glDrawArrays(GL_POINTS, 0, static_cast<GLsizei>(set.positions.rows()));
     glDisableVertexAttribArray(1);
   }
   glDisable(GL_SAMPLE_ALPHA_TO_COVERAGE);
   glDisable(GL_SAMPLE_ALPHA_TO_ONE);
+}
 
-  const GLuint line_program = gpu.line_program.get();
-  glUseProgram(line_program);
-  set_matrix(line_program, "view", frame.view);
-  set_matrix(line_program, "projection", frame.projection);
-  glUniform2f(glGetUniformLocation(line_program, "viewport_size"), static_cast<float>(frame.width),
+void Renderer::draw_lines(const std::vector<LineSet>& sets, const Frame& frame) {
+  Gpu& gpu = *gpu_;
+  const GLuint program = gpu.line_program.get();
+  use_program(program, frame);
+  glUniform2f(uniform(program, "viewport_size"), static_cast<float>(frame.width),
               static_cast<float>(frame.height));
-  for (const LineSet& set : scene.line_sets) {
-    if (set.starts.rows() == 0) continue;
-    if (set.ends.rows() != set.starts.rows()) throw UsageError("a line set has unequal start and end counts");
+  for (const LineSet& set : sets) {
     const Eigen::Index count = set.starts.rows();
+    if (count == 0) continue;
+    if (set.ends.rows() != count) throw UsageError("a line set has unequal start and end counts");
+    const Colors segment_colors = colors_or(set.colors, set.color, count, "a line set");
     core::Points ends(2 * count, 3);
+    Colors end_colors(2 * count, 3);
     for (Eigen::Index i = 0; i < count; ++i) {
       ends.row(2 * i) = set.starts.row(i);
       ends.row(2 * i + 1) = set.ends.row(i);
+      end_colors.row(2 * i) = end_colors.row(2 * i + 1) = segment_colors.row(i);
     }
-    const Colors segment_colors = colors_or(set.colors, set.color, count, "a line set");
-    Colors vertex_colors(2 * count, 3);
-    for (Eigen::Index i = 0; i < count; ++i)
-      vertex_colors.row(2 * i) = vertex_colors.row(2 * i + 1) = segment_colors.row(i);
     upload_attribute(gpu.positions.get(), 0, centred(ends, frame.origin));
-    upload_attribute(gpu.colors.get(), 1, vertex_colors);
-    glUniform1f(glGetUniformLocation(line_program, "width_pixels"), set.width_pixels);
+    upload_attribute(gpu.colors.get(), 1, end_colors);
+    glUniform1f(uniform(program, "width_pixels"), set.width_pixels);
     glDrawArrays(GL_LINES, 0, static_cast<GLsizei>(2 * count));
     glDisableVertexAttribArray(1);
   }
-  glBindVertexArray(0);
+}
 
-  glBindFramebuffer(GL_READ_FRAMEBUFFER, gpu.draw_framebuffer.get());
-  glBindFramebuffer(GL_DRAW_FRAMEBUFFER, gpu.resolved_framebuffer.get());
-  glBlitFramebuffer(0, 0, frame.width, frame.height, 0, 0, frame.width, frame.height, GL_COLOR_BUFFER_BIT,
-                    GL_NEAREST);
-  check_gl("drawing");
+// Into the resolved framebuffer: a multisample resolve, or a plain copy.
+void Renderer::finish_frame() {
+  const int width = settings_.width, height = settings_.height;
+  glBindFramebuffer(GL_READ_FRAMEBUFFER, gpu_->draw_framebuffer.get());
+  glBindFramebuffer(GL_DRAW_FRAMEBUFFER, gpu_->resolved_framebuffer.get());
+  glBlitFramebuffer(0, 0, width, height, 0, 0, width, height, GL_COLOR_BUFFER_BIT, GL_NEAREST);
 }
 
 Image Renderer::read_pixels() const {
@@ -291,6 +317,8 @@ Image Renderer::read_pixels() const {
   for (int y = 0; y < height; ++y)
     std::copy_n(bottom_up.data() + (height - 1 - y) * row_bytes, row_bytes,
                 image.rgba.data() + y * row_bytes);
+  // On the CPU: a full-screen pass costs llvmpipe several times more than this loop (measured).
+  if (settings_.antialiasing == Antialiasing::edge) smooth_edges(image);
   if (settings_.background == Background::transparent)
     for (std::size_t i = 0; i < image.rgba.size(); i += 4) {
       const int alpha = image.rgba[i + 3];

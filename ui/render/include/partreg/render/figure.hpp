@@ -31,7 +31,7 @@ struct Grid {
 struct FigureSettings {
   int panel_width = 640;   ///< pixels per panel
   int panel_height = 360;  ///< pixels per panel
-  int samples = 4;         ///< multisample antialiasing samples per pixel
+  Antialiasing antialiasing = Antialiasing::multisample;
   View view = View::iso;
   double fov_y_deg = 20.0;  ///< vertical field of view (degrees); narrow, so side-by-side shapes look alike
   Background background = Background::white;

@@ -33,6 +33,11 @@ struct Image {
 /// are blended over the canvas by their alpha.
 void blit(Image& canvas, const Image& source, int x, int y);
 
+/// Antialiasing after the fact: where the luminance of a pixel's 3x3 neighbourhood changes sharply, blends it
+/// with its two neighbours along the edge (across the gradient, rounded to one of four directions), which
+/// softens staircases; flat regions are left alone. Blends all four channels (premultiplied colours stay so).
+void smooth_edges(Image& image);
+
 /// Writes a PNG atomically. Throws InputError ("cannot write image out.png: ...") when it cannot.
 void write_png(const std::filesystem::path& path, const Image& image);
 

@@ -4,6 +4,8 @@
 /// own multisampled framebuffer and resolves it; reading the pixels back is the same for every context.
 
 #include <memory>
+#include <string>
+#include <vector>
 
 #include "partreg/render/camera.hpp"
 #include "partreg/render/image.hpp"
@@ -16,12 +18,25 @@ enum class Background { white, transparent };
 /// "white" | "transparent"; UsageError otherwise.
 Background parse_background(const std::string& name);
 
+/// How edges are smoothed. Multisampling is the best looking and the slowest on software GL (llvmpipe
+/// spends two to three times as long per frame); edge smoothing (smooth_edges on the read-back image)
+/// costs a few milliseconds. The window blits the frame before read-back, so it shows edge smoothing as none.
+enum class Antialiasing { multisample, edge, none };
+
+/// "msaa" | "edge" | "none"; UsageError otherwise.
+Antialiasing parse_antialiasing(const std::string& name);
+
 struct RenderSettings {
   int width = 1280;  ///< image width (pixels)
   int height = 960;  ///< image height (pixels)
-  int samples = 4;   ///< multisample antialiasing samples per pixel (1 = none; capped by the GL's limit)
+  Antialiasing antialiasing = Antialiasing::multisample;
+  int samples = 4;  ///< samples per pixel with multisampling (capped by the GL's limit)
   Background background = Background::white;
 };
+
+namespace detail {
+struct FrameState;  // matrices and size of the frame being drawn (renderer.cpp)
+}
 
 /// Draws scenes with the GL functions of the current context (see GlContext::make_current). Not copyable;
 /// it owns GL objects of that context and must be destroyed while it is current.
@@ -41,7 +56,7 @@ class Renderer {
 
   /// Draws `scene` seen by `camera` into the framebuffer. An empty scene gives the bare background.
   void draw(const Scene& scene, const Camera& camera);
-  /// The last drawn frame (resolved), top row first.
+  /// The last drawn frame (resolved, edge-smoothed when asked), top row first.
   Image read_pixels() const;
   /// draw() then read_pixels().
   Image render(const Scene& scene, const Camera& camera);
@@ -50,6 +65,10 @@ class Renderer {
 
  private:
   struct Gpu;
+  void draw_mesh(const MeshItem& item, const detail::FrameState& frame);
+  void draw_splats(const std::vector<PointSet>& sets, const detail::FrameState& frame);
+  void draw_lines(const std::vector<LineSet>& sets, const detail::FrameState& frame);
+  void finish_frame();
   RenderSettings settings_;
   std::unique_ptr<Gpu> gpu_;
 };
