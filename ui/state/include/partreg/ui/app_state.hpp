@@ -1,0 +1,87 @@
+#pragma once
+/// \file
+/// Everything the desktop app shows and edits, as plain data: the labelling document (a canonical mesh and
+/// its part labels, with undo), the shape-space document (a model and slider values), the registration
+/// document (an observation and the stepped result), the camera and the status line. Only execute()
+/// (executor.hpp) changes it; panels and scripts read it.
+
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "partreg/core/category_model.hpp"
+#include "partreg/core/registration.hpp"
+#include "partreg/io/labels_file.hpp"
+#include "partreg/ui/live_deformation.hpp"
+#include "partreg/ui/view.hpp"
+
+namespace partreg::ui {
+
+/// What the viewport shows.
+enum class Mode { labelling, shape_space, registration };
+
+/// "labelling" | "shape" | "registration"; UsageError otherwise.
+Mode parse_mode(const std::string& name);
+std::string to_string(Mode mode);
+
+/// A canonical mesh being labelled (data units), one label per face.
+struct LabelDocument {
+  std::string mesh_path;
+  core::Mesh mesh;
+  io::PartLabels labels;
+  int current_part = -1;          ///< part that paint, fill and selections assign (-1: none chosen)
+  double brush_radius_px = 12.0;  ///< default paint radius (pixels at the picked depth)
+  bool dirty = false;             ///< changed since loaded or saved
+  std::vector<io::PartLabels> undo_stack, redo_stack;
+
+  bool loaded() const { return mesh.faces.rows() > 0; }
+};
+
+/// A category model and the shape-space sliders.
+struct ShapeDocument {
+  std::string model_path;
+  std::shared_ptr<const core::CategoryModel> model;
+  int space = 0;                          ///< index into model->spaces; 0 = holistic
+  std::vector<Eigen::VectorXd> std_devs;  ///< per space, one slider value per dimension (standard deviations)
+  std::shared_ptr<LiveDeformation> deformation;
+
+  bool loaded() const { return model != nullptr; }
+  /// The latent of space `s` (slider values times the square roots of the variances).
+  Eigen::VectorXd latent(int s) const;
+};
+
+/// An observation and the registration stepped through.
+struct RegistrationDocument {
+  std::string observed_path;
+  core::Points observed;  ///< data units, observed frame
+  core::Variant variant = core::Variant::holistic;
+  std::optional<core::RegistrationResult> result;
+  int step = -1;  ///< index into result->history (-1: before the first step)
+};
+
+struct AppState {
+  Viewport viewport;
+  OrbitView view;
+  Mode mode = Mode::labelling;
+  LabelDocument labelling;
+  ShapeDocument shapes;
+  RegistrationDocument registration;
+  std::string status;  ///< the last command's message
+  bool status_is_error = false;
+  bool quit_requested = false;
+  bool show_panels = true;
+};
+
+/// The canonical mesh deformed by the sliders (normalised units; empty when no model or no mesh).
+core::Mesh shape_space_mesh(AppState& state);
+
+/// The canonical points as the registration had them after history step `state.registration.step`
+/// (observed frame, data units), with their parts; rows a part space has not reached yet stay at the last
+/// holistic step. Empty without a result.
+core::Points registration_points(const AppState& state, Eigen::VectorXi* part = nullptr);
+
+/// The box the current mode's geometry spans (for the named views); a unit box when there is nothing.
+void mode_bounds(AppState& state, Eigen::Vector3d& low, Eigen::Vector3d& high);
+
+}  // namespace partreg::ui

@@ -1,0 +1,105 @@
+#include "partreg/ui/app_state.hpp"
+
+#include <cmath>
+
+#include "partreg/core/errors.hpp"
+
+namespace partreg::ui {
+namespace {
+
+void extend(const core::Points& points, Eigen::Vector3d& low, Eigen::Vector3d& high) {
+  for (Eigen::Index i = 0; i < points.rows(); ++i) {
+    if (!points.row(i).allFinite()) continue;
+    low = low.cwiseMin(points.row(i).transpose());
+    high = high.cwiseMax(points.row(i).transpose());
+  }
+}
+
+}  // namespace
+
+Mode parse_mode(const std::string& name) {
+  if (name == "labelling") return Mode::labelling;
+  if (name == "shape") return Mode::shape_space;
+  if (name == "registration") return Mode::registration;
+  throw UsageError("unknown mode '" + name + "' (labelling | shape | registration)");
+}
+
+std::string to_string(Mode mode) {
+  switch (mode) {
+    case Mode::labelling:
+      return "labelling";
+    case Mode::shape_space:
+      return "shape";
+    case Mode::registration:
+      return "registration";
+  }
+  return "";
+}
+
+Eigen::VectorXd ShapeDocument::latent(int s) const {
+  const core::ShapeSpace& space = model->spaces.at(static_cast<std::size_t>(s));
+  return std_devs.at(static_cast<std::size_t>(s)).cwiseProduct(space.variances.cwiseSqrt());
+}
+
+core::Mesh shape_space_mesh(AppState& state) {
+  ShapeDocument& shapes = state.shapes;
+  if (!shapes.loaded() || shapes.model->canonical_mesh.faces.rows() == 0) return {};
+  std::vector<Eigen::VectorXd> latents;
+  for (int s = 0; s < static_cast<int>(shapes.model->spaces.size()); ++s) latents.push_back(shapes.latent(s));
+  core::Mesh mesh;
+  mesh.faces = shapes.model->canonical_mesh.faces;
+  mesh.vertices = shapes.deformation->deform(latents, shapes.space == 0);
+  return mesh;
+}
+
+core::Points registration_points(const AppState& state, Eigen::VectorXi* part) {
+  const RegistrationDocument& registration = state.registration;
+  if (!registration.result || !state.shapes.loaded()) return {};
+  const core::CategoryModel& model = *state.shapes.model;
+  const auto& history = registration.result->history;
+  core::Points points = core::Points::Constant(model.canonical.rows(), 3, std::nan(""));
+  // Replays the history up to the current step: each step moves the rows of its space.
+  for (int i = 0; i <= registration.step && i < static_cast<int>(history.size()); ++i) {
+    const core::HistoryStep& step = history[static_cast<std::size_t>(i)];
+    const core::ShapeSpace& space = model.space(step.space);
+    const core::Points in_data = model.normalization.undo(space.deformed(step.latent));
+    const Eigen::Matrix3d rotation = step.T_observed_canonical.topLeftCorner<3, 3>();
+    const Eigen::Vector3d translation = step.T_observed_canonical.topRightCorner<3, 1>();
+    for (Eigen::Index r = 0; r < in_data.rows(); ++r) {
+      const int row = space.point_indices.empty() ? static_cast<int>(r) : space.point_indices[r];
+      points.row(row) = (rotation * in_data.row(r).transpose() + translation).transpose();
+    }
+  }
+  if (registration.step < 0) {
+    // Before the first step: the canonical where the registration starts (the data frame).
+    points = model.normalization.undo(model.canonical);
+  }
+  if (part) *part = model.canonical_part;
+  return points;
+}
+
+void mode_bounds(AppState& state, Eigen::Vector3d& low, Eigen::Vector3d& high) {
+  low = Eigen::Vector3d::Constant(std::numeric_limits<double>::infinity());
+  high = -low;
+  switch (state.mode) {
+    case Mode::labelling:
+      extend(state.labelling.mesh.vertices, low, high);
+      break;
+    case Mode::shape_space:
+      if (state.shapes.loaded()) {
+        const core::Mesh mesh = shape_space_mesh(state);
+        extend(mesh.faces.rows() > 0 ? mesh.vertices : state.shapes.model->canonical, low, high);
+      }
+      break;
+    case Mode::registration:
+      extend(state.registration.observed, low, high);
+      extend(registration_points(state), low, high);
+      break;
+  }
+  if (!(low.array() <= high.array()).all()) {
+    low = Eigen::Vector3d::Constant(-0.5);
+    high = Eigen::Vector3d::Constant(0.5);
+  }
+}
+
+}  // namespace partreg::ui

@@ -1,0 +1,398 @@
+#include "partreg/ui/executor.hpp"
+
+#include <chrono>
+#include <cmath>
+#include <functional>
+#include <map>
+#include <random>
+#include <sstream>
+
+#include "partreg/core/errors.hpp"
+#include "partreg/io/atomic_file.hpp"
+#include "partreg/io/cloud_io.hpp"
+#include "partreg/io/geometry_io.hpp"
+#include "partreg/io/model_file.hpp"
+#include "partreg/ui/labelling.hpp"
+
+namespace partreg::ui {
+namespace {
+
+using Handler = std::function<Outcome(AppState&, const Command&)>;
+
+double number(const std::string& text, const std::string& what) {
+  try {
+    std::size_t used = 0;
+    const double value = std::stod(text, &used);
+    if (used == text.size() && std::isfinite(value)) return value;
+  } catch (const std::exception&) {
+  }
+  throw UsageError(what + " must be a number, not '" + text + "'");
+}
+
+int integer(const std::string& text, const std::string& what) {
+  const double value = number(text, what);
+  if (value != std::floor(value)) throw UsageError(what + " must be a whole number, not '" + text + "'");
+  return static_cast<int>(value);
+}
+
+void fit_view(AppState& state, const std::string& name = "iso") {
+  Eigen::Vector3d low, high;
+  mode_bounds(state, low, high);
+  state.view = named_view(name, low, high, state.viewport);
+}
+
+Outcome message(const std::string& text) { return Outcome{text, ""}; }
+
+// --- files
+
+Outcome load_model(AppState& state, const std::string& path) {
+  auto model = std::make_shared<core::CategoryModel>(io::read_model(path));
+  ShapeDocument shapes;
+  shapes.model_path = path;
+  shapes.model = model;
+  for (const core::ShapeSpace& space : model->spaces)
+    shapes.std_devs.push_back(Eigen::VectorXd::Zero(space.dimensions()));
+  shapes.deformation = std::make_shared<LiveDeformation>(model.get());
+  state.shapes = std::move(shapes);
+  state.registration.result.reset();
+  state.registration.step = -1;
+  state.mode = Mode::shape_space;
+  fit_view(state);
+  return message("loaded the model " + path + " (" + model->category + ", " +
+                 std::to_string(model->spaces.size()) + " spaces)");
+}
+
+Outcome load_observed(AppState& state, const std::string& path, int mesh_points) {
+  if (mesh_points < 10) throw UsageError("points= must be at least 10");
+  core::Cloud cloud = io::read_as_cloud(path, static_cast<std::size_t>(mesh_points), 1);
+  state.registration.observed_path = path;
+  state.registration.observed = std::move(cloud.points);
+  state.registration.result.reset();
+  state.registration.step = -1;
+  state.mode = Mode::registration;
+  fit_view(state);
+  return message("loaded " + std::to_string(state.registration.observed.rows()) + " observed points from " +
+                 path);
+}
+
+Outcome load(AppState& state, const Command& command) {
+  const std::string& path = command.arguments[0];
+  if (io::lower_extension(path) == ".prm") return load_model(state, path);
+  if (io::is_mesh_file(path)) {
+    LabelDocument document = load_label_document(path);
+    state.labelling = std::move(document);
+    state.mode = Mode::labelling;
+    fit_view(state);
+    return message("loaded " + path + " (" + std::to_string(state.labelling.mesh.faces.rows()) +
+                   " faces) for labelling");
+  }
+  return load_observed(state, path, 5000);
+}
+
+// --- labelling
+
+Hit pick(const AppState& state, const Command& command) {
+  const double x = number(command.arguments[0], "X"), y = number(command.arguments[1], "Y");
+  if (!state.labelling.loaded()) throw UsageError("no mesh is loaded to label (load MESH first)");
+  const std::optional<Hit> hit = intersect(state.labelling.mesh, pixel_ray(state.view, state.viewport, x, y));
+  if (!hit)
+    throw InputError("no surface under the pixel (" + command.arguments[0] + ", " + command.arguments[1] +
+                     ")");
+  return *hit;
+}
+
+Outcome paint(AppState& state, const Command& command) {
+  const Hit hit = pick(state, command);
+  const double radius_px =
+      number(command.option("radius", std::to_string(state.labelling.brush_radius_px)), "radius");
+  if (radius_px <= 0.0) throw UsageError("radius must be positive");
+  const double radius = radius_px * pixel_size_at(state.view, state.viewport, hit.distance);
+  state.mode = Mode::labelling;
+  const int changed = paint_faces(state.labelling, hit.face, hit.point, radius);
+  return message("painted " + std::to_string(changed) + " faces");
+}
+
+Outcome fill(AppState& state, const Command& command) {
+  const Hit hit = pick(state, command);
+  state.mode = Mode::labelling;
+  return message("filled " + std::to_string(fill_faces(state.labelling, hit.face)) + " faces");
+}
+
+template <typename Parse>
+Handler selector(Parse parse) {
+  return [parse](AppState& state, const Command& command) {
+    const int changed = select_faces(state.labelling, parse(command.arguments[0]));
+    return message("selected " + std::to_string(changed) + " faces");
+  };
+}
+
+// --- shape spaces
+
+int space_index(const AppState& state, const std::string& name) {
+  if (!state.shapes.loaded()) throw UsageError("no model is loaded (load MODEL.prm first)");
+  const auto& spaces = state.shapes.model->spaces;
+  for (std::size_t s = 0; s < spaces.size(); ++s)
+    if (spaces[s].name == name) return static_cast<int>(s);
+  state.shapes.model->space(name);  // throws the list of names
+  throw UsageError("no space " + name);
+}
+
+Outcome set_latent(AppState& state, const Command& command) {
+  const int s = space_index(state, command.arguments[0]);
+  const int k = integer(command.arguments[1], "K");
+  const double value = number(command.arguments[2], "VALUE");
+  Eigen::VectorXd& values = state.shapes.std_devs[static_cast<std::size_t>(s)];
+  if (k < 1 || k > values.size())
+    throw UsageError("space " + command.arguments[0] + " has dimensions 1 to " +
+                     std::to_string(values.size()));
+  values[k - 1] = value;
+  state.shapes.space = s;
+  state.mode = Mode::shape_space;
+  return message(command.arguments[0] + " latent " + std::to_string(k) + " = " + command.arguments[2] +
+                 " sd");
+}
+
+Outcome reset_latents(AppState& state, const Command& command) {
+  if (!state.shapes.loaded()) throw UsageError("no model is loaded (load MODEL.prm first)");
+  for (std::size_t s = 0; s < state.shapes.std_devs.size(); ++s)
+    if (command.arguments.empty() || static_cast<int>(s) == space_index(state, command.arguments[0]))
+      state.shapes.std_devs[s].setZero();
+  return message("sliders reset");
+}
+
+Outcome sample_latents(AppState& state, const Command& command) {
+  if (!state.shapes.loaded()) throw UsageError("no model is loaded (load MODEL.prm first)");
+  std::mt19937_64 generator(static_cast<std::uint64_t>(integer(command.arguments[0], "SEED")));
+  std::normal_distribution<double> normal(0.0, 1.0);
+  for (double& value : state.shapes.std_devs[static_cast<std::size_t>(state.shapes.space)])
+    value = normal(generator);
+  state.mode = Mode::shape_space;
+  return message("sampled the sliders of " + state.shapes.model->spaces[state.shapes.space].name);
+}
+
+// --- registration
+
+Outcome run_registration(AppState& state, const Command& command) {
+  if (!state.shapes.loaded()) throw UsageError("no model is loaded (load MODEL.prm first)");
+  if (state.registration.observed.rows() == 0)
+    throw UsageError("no observation is loaded (load CLOUD first)");
+  core::RegistrationSettings settings;
+  settings.variant = core::parse_variant(command.arguments[0]);
+  if (!command.option("direction").empty())
+    settings.direction = core::parse_direction(command.option("direction"));
+  if (!command.option("loss").empty()) settings.loss = core::parse_loss(command.option("loss"));
+  if (!command.option("iterations").empty())
+    settings.outer_iterations = integer(command.option("iterations"), "iterations");
+  core::RegistrationResult result =
+      core::register_observation(*state.shapes.model, state.registration.observed, settings);
+  state.registration.variant = settings.variant;
+  state.registration.step = static_cast<int>(result.history.size()) - 1;
+  state.registration.result = std::move(result);
+  state.mode = Mode::registration;
+  std::ostringstream text;
+  text << "registered (" << core::to_string(settings.variant) << ") in " << state.registration.result->seconds
+       << " s, " << state.registration.result->history.size() << " steps";
+  return message(text.str());
+}
+
+Outcome move_step(AppState& state, int target) {
+  if (!state.registration.result) throw UsageError("nothing to step through (register VARIANT first)");
+  const int last = static_cast<int>(state.registration.result->history.size()) - 1;
+  state.registration.step = std::clamp(target, -1, last);
+  state.mode = Mode::registration;
+  return message("step " + std::to_string(state.registration.step + 1) + " of " + std::to_string(last + 1));
+}
+
+// --- camera
+
+Outcome camera_command(AppState& state, const Command& command) {
+  fit_view(state, command.arguments[0]);
+  return message("camera " + command.arguments[0]);
+}
+
+Outcome orbit(AppState& state, const Command& command) {
+  state.view.azimuth_deg += number(command.arguments[0], "D_AZIMUTH_DEG");
+  state.view.elevation_deg =
+      std::clamp(state.view.elevation_deg + number(command.arguments[1], "D_ELEVATION_DEG"), -89.9, 89.9);
+  return {};
+}
+
+Outcome zoom(AppState& state, const Command& command) {
+  const double factor = number(command.arguments[0], "FACTOR");
+  if (factor <= 0.0) throw UsageError("FACTOR must be positive");
+  state.view.distance /= factor;
+  return {};
+}
+
+Outcome pan(AppState& state, const Command& command) {
+  const CameraFrame frame = camera_frame(state.view, state.viewport);
+  const Eigen::Vector3d backward = (frame.eye - frame.target).normalized();
+  const Eigen::Vector3d right = frame.up.cross(backward).normalized(), up = backward.cross(right);
+  const double pixel = pixel_size_at(state.view, state.viewport, state.view.distance);
+  // Dragging right moves the scene right: the target goes left.
+  state.view.target +=
+      pixel * (-number(command.arguments[0], "DX") * right + number(command.arguments[1], "DY") * up);
+  return {};
+}
+
+Outcome centre(AppState& state, const Command& command) {
+  const Hit hit = pick(state, command);
+  state.view.distance = (camera_frame(state.view, state.viewport).eye - hit.point).norm();
+  state.view.target = hit.point;
+  return message("centred on the picked point");
+}
+
+Outcome resize(AppState& state, const Command& command) {
+  const int width = integer(command.arguments[0], "WIDTH"), height = integer(command.arguments[1], "HEIGHT");
+  if (width < 16 || height < 16 || width > 8192 || height > 8192)
+    throw UsageError("sizes are 16 to 8192 pixels");
+  state.viewport.width = width;
+  state.viewport.height = height;
+  return {};
+}
+
+const std::map<std::string, Handler>& handlers() {
+  static const std::map<std::string, Handler> table = {
+      {"load", load},
+      {"load_observed",
+       [](AppState& s, const Command& c) {
+         return load_observed(s, c.arguments[0], integer(c.option("points", "5000"), "points"));
+       }},
+      {"load_labels",
+       [](AppState& s, const Command& c) {
+         load_labels(s.labelling, c.arguments[0]);
+         s.mode = Mode::labelling;
+         return message("loaded the labels " + c.arguments[0]);
+       }},
+      {"save_labels",
+       [](AppState& s, const Command& c) {
+         save_labels(s.labelling, c.arguments[0]);
+         return message("saved " + c.arguments[0]);
+       }},
+      {"mode",
+       [](AppState& s, const Command& c) {
+         s.mode = parse_mode(c.arguments[0]);
+         fit_view(s);
+         return message("");
+       }},
+      {"create_part",
+       [](AppState& s, const Command& c) {
+         create_part(s.labelling, c.arguments[0]);
+         return message("created part " + c.arguments[0]);
+       }},
+      {"select_part",
+       [](AppState& s, const Command& c) {
+         s.labelling.current_part = find_part(s.labelling, c.arguments[0]);
+         return message("painting " + c.arguments[0]);
+       }},
+      {"rename_part",
+       [](AppState& s, const Command& c) {
+         rename_part(s.labelling, c.arguments[0], c.arguments[1]);
+         return message("renamed " + c.arguments[0] + " to " + c.arguments[1]);
+       }},
+      {"recolor_part",
+       [](AppState& s, const Command& c) {
+         recolor_part(s.labelling, c.arguments[0], integer(c.arguments[1], "R"), integer(c.arguments[2], "G"),
+                      integer(c.arguments[3], "B"));
+         return message("");
+       }},
+      {"merge_part",
+       [](AppState& s, const Command& c) {
+         merge_parts(s.labelling, c.arguments[0], c.arguments[1]);
+         return message("merged " + c.arguments[0] + " into " + c.arguments[1]);
+       }},
+      {"delete_part",
+       [](AppState& s, const Command& c) {
+         delete_part(s.labelling, c.arguments[0]);
+         return message("deleted " + c.arguments[0]);
+       }},
+      {"paint", paint},
+      {"fill", fill},
+      {"select_box", selector(core::parse_box)},
+      {"select_plane", selector(core::parse_plane)},
+      {"select_sphere", selector(core::parse_sphere)},
+      {"brush",
+       [](AppState& s, const Command& c) {
+         const double radius = number(c.arguments[0], "RADIUS_PIXELS");
+         if (radius <= 0.0) throw UsageError("the brush radius must be positive");
+         s.labelling.brush_radius_px = radius;
+         return message("");
+       }},
+      {"undo",
+       [](AppState& s, const Command&) { return message(undo(s.labelling) ? "undone" : "nothing to undo"); }},
+      {"redo",
+       [](AppState& s, const Command&) { return message(redo(s.labelling) ? "redone" : "nothing to redo"); }},
+      {"space",
+       [](AppState& s, const Command& c) {
+         s.shapes.space = space_index(s, c.arguments[0]);
+         s.mode = Mode::shape_space;
+         return message("space " + c.arguments[0]);
+       }},
+      {"set_latent", set_latent},
+      {"reset_latents", reset_latents},
+      {"sample_latents", sample_latents},
+      {"register", run_registration},
+      {"step",
+       [](AppState& s, const Command& c) {
+         return move_step(s, s.registration.step + integer(c.arguments[0], "N"));
+       }},
+      {"goto_step",
+       [](AppState& s, const Command& c) {
+         const std::string& where = c.arguments[0];
+         if (where == "first") return move_step(s, 0);
+         if (where == "last") return move_step(s, 1 << 30);
+         return move_step(s, integer(where, "I") - 1);
+       }},
+      {"camera", camera_command},
+      {"orbit", orbit},
+      {"zoom", zoom},
+      {"pan", pan},
+      {"centre", centre},
+      {"resize", resize},
+      {"panels",
+       [](AppState& s, const Command& c) {
+         if (c.arguments[0] != "on" && c.arguments[0] != "off") throw UsageError("panels on | off");
+         s.show_panels = c.arguments[0] == "on";
+         s.viewport.panel_width = s.show_panels ? Viewport{}.panel_width : 0;
+         return message("");
+       }},
+      {"screenshot",
+       [](AppState&, const Command& c) {
+         if (io::lower_extension(c.arguments[0]) != ".png") throw UsageError("screenshots are .png files");
+         return Outcome{"", c.arguments[0]};
+       }},
+      {"quit",
+       [](AppState& s, const Command&) {
+         s.quit_requested = true;
+         return message("");
+       }},
+  };
+  return table;
+}
+
+}  // namespace
+
+Outcome execute(AppState& state, const Command& command) {
+  const auto found = handlers().find(command.verb);
+  if (found == handlers().end()) throw UsageError("unknown command '" + command.verb + "'");
+  Outcome outcome = found->second(state, command);
+  state.status = outcome.message;
+  state.status_is_error = false;
+  return outcome;
+}
+
+bool execute_reporting(AppState& state, const Command& command, Outcome* outcome) {
+  try {
+    Outcome result = execute(state, command);
+    if (outcome) *outcome = std::move(result);
+    return true;
+  } catch (const InputError& error) {
+    state.status = error.what();
+  } catch (const UsageError& error) {
+    state.status = error.what();
+  }
+  state.status_is_error = true;
+  return false;
+}
+
+}  // namespace partreg::ui
