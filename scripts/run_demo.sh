@@ -40,5 +40,9 @@ echo "== 5. non-rigid CPD from one mug body to another" >&2
 "$partreg" cpd "$out/mugs/mug_000/body.obj" "$out/mugs/mug_001/body.obj" --mode nonrigid --points 1000 \
   --out "$out/mug_000_on_mug_001.ply" --json "$out/cpd.json"
 
+echo "== 6. a comparison figure: the held-out mug (red) and each variant's deformed canonical (parts coloured)" >&2
+"$partreg" figure compare "$out/mug.prm" "$out/held_out/mug_008_observed.ply" --variants holistic,partwise,hol+part \
+  --out "$out/compare.png"
+
 echo "== done: outputs in $out" >&2
 ls "$out" >&2

@@ -31,17 +31,21 @@ TEST(Camera, TargetProjectsToTheCentreAndUpPointsUp) {
 }
 
 TEST(Camera, NamedViewsLookFromTheirSide) {
+  // +Y up, the front towards -Z.
   Bounds box;
   box.extend(Eigen::Vector3d(-1, -1, -1));
   box.extend(Eigen::Vector3d(1, 1, 1));
-  EXPECT_GT(fit_camera(box, View::front, 1.0).eye.z(), 1.0);
+  EXPECT_LT(fit_camera(box, View::front, 1.0).eye.z(), -1.0);
   EXPECT_GT(fit_camera(box, View::side, 1.0).eye.x(), 1.0);
   const Camera top = fit_camera(box, View::top, 1.0);
   EXPECT_GT(top.eye.y(), 1.0);
   EXPECT_NO_THROW(top.view_matrix());  // straight above still has a usable up vector
+  EXPECT_GT(top.up.z(), 0.9);          // the far side (+Z) up, the front at the bottom of the image
   const Camera iso = fit_camera(box, View::iso, 1.0);
-  EXPECT_TRUE((iso.eye.array() > 1.0).all());
-  // A wrong answer: front seen from the side would not put +Z towards the viewer.
+  EXPECT_GT(iso.eye.x(), 1.0);
+  EXPECT_GT(iso.eye.y(), 1.0);
+  EXPECT_LT(iso.eye.z(), -1.0);
+  // A wrong answer: the side view is not on the front's axis.
   EXPECT_LT(std::abs(fit_camera(box, View::side, 1.0).eye.z()), 1e-9);
 }
 

@@ -62,6 +62,7 @@ void run_compare(const FigureOptions& options) {
     runs.push_back(run);
   }
   if (runs.empty()) throw UsageError("--variants names no variant");
+  check_output_folder(options.out);
   const core::CategoryModel model = io::read_model(options.model_path);
   const core::Points observed = read_points_logged(options.observed_path, options.observed_samples, 1);
   render::Grid grid;
@@ -81,6 +82,7 @@ void run_compare(const FigureOptions& options) {
 void run_space(const FigureOptions& options) {
   const auto start = std::chrono::steady_clock::now();
   const render::FigureSettings settings = figure_settings(options, "320x240");
+  check_output_folder(options.out);
   const core::CategoryModel model = io::read_model(options.model_path);
   const render::Grid grid = render::shape_space_grid(model, options.space);
   std::cerr << "space " << options.space << ": " << grid.row_labels.size() << " principal directions\n";

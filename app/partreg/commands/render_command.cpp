@@ -1,6 +1,9 @@
 // `partreg render FILES... --out IMAGE.png`: any clouds and meshes partreg reads, drawn headlessly.
+#include <array>
 #include <chrono>
+#include <filesystem>
 #include <iostream>
+#include <map>
 #include <memory>
 #include <sstream>
 
@@ -25,24 +28,35 @@ struct RenderOptions {
   std::string antialias = "msaa";
 };
 
-// The part of each vertex of a PLY mesh written by partreg (`register --mesh-out`, `label`): read as a
-// cloud, used only when its vertices are exactly the mesh's (the mesh reader may have joined duplicates).
+// The part of each vertex of a PLY mesh written by partreg (`register --mesh-out`, `label`): its vertices
+// read as a cloud, matched to the mesh's by exact position (the mesh reader joins duplicate vertices).
+// Empty when the file has no parts or a vertex has no match.
 Eigen::VectorXi mesh_vertex_part(const std::string& path, const core::Mesh& mesh) {
   if (io::lower_extension(path) != ".ply") return {};
   const io::CloudFile vertices = io::read_cloud_file(path);
   const auto found = vertices.attributes.integers.find("part");
-  if (found == vertices.attributes.integers.end() || vertices.cloud.points.rows() != mesh.vertices.rows() ||
-      !vertices.cloud.points.isApprox(mesh.vertices))
-    return {};
-  return found->second;
+  if (found == vertices.attributes.integers.end()) return {};
+  using Key = std::array<double, 3>;
+  std::map<Key, int> part_at;
+  for (Eigen::Index i = 0; i < vertices.cloud.points.rows(); ++i)
+    part_at[{vertices.cloud.points(i, 0), vertices.cloud.points(i, 1), vertices.cloud.points(i, 2)}] =
+        found->second[i];
+  Eigen::VectorXi part(mesh.vertices.rows());
+  for (Eigen::Index i = 0; i < mesh.vertices.rows(); ++i) {
+    const auto match = part_at.find({mesh.vertices(i, 0), mesh.vertices(i, 1), mesh.vertices(i, 2)});
+    if (match == part_at.end()) return {};
+    part[i] = match->second;
+  }
+  return part;
 }
 
 // Adds one file to the scene, coloured by its index, by part or not at all.
 void add_file(render::Scene& scene, const std::string& path, int index, const RenderOptions& options) {
   render::Colors colors;
   Eigen::VectorXi part;
+  // By part, files without parts are grey: the part palette is the file palette.
   const render::Color file_color =
-      options.color_by == "none" ? render::neutral_color() : render::file_color(index);
+      options.color_by == "file" ? render::file_color(index) : render::neutral_color();
   if (io::is_mesh_file(path)) {
     render::MeshItem item;
     item.mesh = io::read_mesh(path);
@@ -67,7 +81,7 @@ void add_file(render::Scene& scene, const std::string& path, int index, const Re
     scene.point_sets.push_back(std::move(points));
   }
   if (options.color_by == "part" && part.size() == 0)
-    std::cerr << "partreg: warning: " << path << " has no part labels; drawn in its file colour\n";
+    std::cerr << "partreg: warning: " << path << " has no part labels; drawn in grey\n";
 }
 
 render::Camera camera_of(const RenderOptions& options, const render::Scene& scene, double aspect) {
@@ -91,6 +105,7 @@ void run_render(const RenderOptions& options) {
   settings.antialiasing = render::parse_antialiasing(options.antialias);
   settings.background = render::parse_background(options.background);
   render::parse_view(options.view);
+  check_output_folder(options.out);
   render::Scene scene;
   for (std::size_t i = 0; i < options.files.size(); ++i)
     add_file(scene, options.files[i], static_cast<int>(i), options);
@@ -114,6 +129,12 @@ std::pair<int, int> parse_size(const std::string& text, const std::string& optio
   return {width, height};
 }
 
+void check_output_folder(const std::string& path) {
+  const std::filesystem::path folder = std::filesystem::path(path).parent_path();
+  if (!folder.empty() && !std::filesystem::is_directory(folder))
+    throw InputError("cannot write " + path + ": folder " + folder.string() + " does not exist");
+}
+
 Eigen::Vector3d parse_vector3(const std::string& text, const std::string& option) {
   std::stringstream in(text);
   Eigen::Vector3d value;
@@ -131,7 +152,8 @@ void add_render_commands(CLI::App& app) {
   command->add_option("--out", o->out, "the PNG to write")->required();
   command->add_option("--size", o->size, "image size WIDTHxHEIGHT (pixels)")->capture_default_str();
   command->add_option("--view", o->view, "iso | front | side | top (+Y up)")->capture_default_str();
-  command->add_option("--color-by", o->color_by, "part | file | none")->capture_default_str();
+  command->add_option("--color-by", o->color_by, "part (unlabelled files grey) | file | none")
+      ->capture_default_str();
   command->add_option("--background", o->background, "white | transparent")->capture_default_str();
   command->add_option("--eye", o->eye, "X,Y,Z camera position (with --target; overrides --view)");
   command->add_option("--target", o->target, "X,Y,Z point the camera looks at");

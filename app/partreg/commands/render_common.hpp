@@ -16,6 +16,10 @@ std::pair<int, int> parse_size(const std::string& text, const std::string& optio
 /// "x,y,z" -> a vector; UsageError naming `option` otherwise.
 Eigen::Vector3d parse_vector3(const std::string& text, const std::string& option);
 
+/// Throws InputError ("cannot write X: folder Y does not exist") before any work when `path`'s folder is
+/// missing.
+void check_output_folder(const std::string& path);
+
 /// `partreg figure compare` and `partreg figure space`.
 void add_figure_command(CLI::App& app);
 

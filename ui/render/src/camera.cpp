@@ -94,16 +94,16 @@ OrbitCamera named_orbit(View view) {
   orbit.distance = 1.0;
   switch (view) {
     case View::front:
-      orbit.azimuth_deg = 0.0, orbit.elevation_deg = 0.0;
+      orbit.azimuth_deg = 180.0, orbit.elevation_deg = 0.0;
       break;
     case View::side:
       orbit.azimuth_deg = 90.0, orbit.elevation_deg = 0.0;
       break;
     case View::top:
-      orbit.azimuth_deg = 0.0, orbit.elevation_deg = 90.0;
+      orbit.azimuth_deg = 180.0, orbit.elevation_deg = 90.0;
       break;
     case View::iso:
-      orbit.azimuth_deg = 45.0, orbit.elevation_deg = 30.0;
+      orbit.azimuth_deg = 135.0, orbit.elevation_deg = 30.0;
       break;
   }
   return orbit;

@@ -1,8 +1,9 @@
 #pragma once
 /// \file
 /// Cameras: an explicit eye/target/up camera, an orbit camera around a target, and the named views that
-/// fit a scene's bounds. The category frame has +Y up (as registration assumes); named views look at it from
-/// +Z (front), +X (side), +Y (top) or from above the front-right corner (iso).
+/// fit a scene's bounds. partreg's frame has +Y up and the front towards -Z (as the ShapeNet data and the
+/// synthetic categories); named views look at it from -Z (front), +X (side), +Y (top, front at the bottom of
+/// the image) or from above between the front and the side (iso: azimuth 135, elevation 30 degrees).
 
 #include <Eigen/Core>
 #include <limits>
@@ -54,7 +55,7 @@ struct OrbitCamera {
   double elevation_deg = 30.0;  ///< above the horizontal plane, in [-90, 90] (90 = from straight above)
   double fov_y_deg = 30.0;      ///< vertical field of view (degrees)
 
-  /// The camera; its up vector is the orbit's, so views from straight above keep -Z (the back) up.
+  /// The camera; its up vector is the orbit's, so a view from straight above keeps the far side up.
   Camera camera() const;
 };
 
