@@ -376,7 +376,7 @@ Outcome execute(AppState& state, const Command& command) {
   const auto found = handlers().find(command.verb);
   if (found == handlers().end()) throw UsageError("unknown command '" + command.verb + "'");
   Outcome outcome = found->second(state, command);
-  state.status = outcome.message;
+  if (!outcome.message.empty() || state.status_is_error) state.status = outcome.message;
   state.status_is_error = false;
   return outcome;
 }

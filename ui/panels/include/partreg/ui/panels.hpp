@@ -1,0 +1,36 @@
+#pragma once
+/// \file
+/// The Dear ImGui panels: a column on the left with a tab per mode (labelling, shape space, registration)
+/// and a status line. Panels read the state and only emit commands; they never change the state.
+
+#include <string>
+#include <vector>
+
+#include "partreg/ui/app_state.hpp"
+#include "partreg/ui/commands.hpp"
+
+namespace partreg::ui {
+
+/// What the mouse does in the viewport (chosen in the labelling panel).
+enum class Tool { orbit, paint, fill };
+
+/// The panels' own editing state: text being typed, the tool, the last mode shown. Not app state.
+struct PanelState {
+  Tool tool = Tool::orbit;
+  std::string new_part = "handle";
+  std::string rename_to;
+  std::string labels_path = "labels.json";
+  std::string screenshot_path = "partreg-gui.png";
+  int variant = -1;  ///< 0 holistic, 1 partwise, 2 hol+part; -1 = the last registration's
+  int sample_seed = 1;
+  Mode shown_mode = Mode::labelling;
+  bool first_frame = true;
+  bool confirm_quit = false;    ///< the window asked to close with unsaved labels: ask the user
+  bool confirmed_quit = false;  ///< the user chose to quit without saving
+};
+
+/// Builds the panels for this ImGui frame (between ImGui::NewFrame and ImGui::Render) and appends what the
+/// user asked for to `emitted`.
+void draw_panels(const AppState& state, PanelState& panel, std::vector<Command>& emitted);
+
+}  // namespace partreg::ui

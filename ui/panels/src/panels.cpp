@@ -1,0 +1,221 @@
+#include "partreg/ui/panels.hpp"
+
+#include <imgui.h>
+
+#include <algorithm>
+#include <cstdio>
+
+#include "partreg/ui/labelling.hpp"
+
+namespace partreg::ui {
+namespace {
+
+void emit(std::vector<Command>& out, const std::string& verb, std::vector<std::string> arguments = {}) {
+  out.push_back(make_command(verb, std::move(arguments)));
+}
+
+// A text field backed by a std::string (ImGui 1.86 without imgui_stdlib's resize callback).
+bool input_text(const char* label, std::string& text) {
+  char buffer[512];
+  std::snprintf(buffer, sizeof(buffer), "%s", text.c_str());
+  const bool changed = ImGui::InputText(label, buffer, sizeof(buffer));
+  if (changed) text = buffer;
+  return changed;
+}
+
+std::string number_text(double value) {
+  char buffer[32];
+  std::snprintf(buffer, sizeof(buffer), "%.3f", value);
+  return buffer;
+}
+
+void labelling_panel(const AppState& state, PanelState& panel, std::vector<Command>& out) {
+  const LabelDocument& document = state.labelling;
+  if (!document.loaded()) {
+    ImGui::TextWrapped(
+        "Load a canonical mesh to label: File > load PATH in a script, or start the app with "
+        "a mesh.");
+    return;
+  }
+  ImGui::TextWrapped("%s", document.mesh_path.c_str());
+  ImGui::Text("%d faces%s", static_cast<int>(document.mesh.faces.rows()),
+              document.dirty ? "  (unsaved)" : "");
+  ImGui::Separator();
+  ImGui::Text("Tool");
+  int tool = static_cast<int>(panel.tool);
+  ImGui::RadioButton("Orbit", &tool, 0);
+  ImGui::SameLine();
+  ImGui::RadioButton("Paint", &tool, 1);
+  ImGui::SameLine();
+  ImGui::RadioButton("Fill", &tool, 2);
+  panel.tool = static_cast<Tool>(tool);
+  float radius = static_cast<float>(document.brush_radius_px);
+  if (ImGui::SliderFloat("Brush (px)", &radius, 2.0f, 80.0f, "%.0f"))
+    emit(out, "brush", {number_text(radius)});
+  ImGui::Separator();
+  const std::vector<int> counts = part_face_counts(document);
+  for (std::size_t p = 0; p < document.labels.names.size(); ++p) {
+    ImGui::PushID(static_cast<int>(p));
+    const auto& rgb = document.labels.colors[p];
+    float color[3] = {rgb[0] / 255.0f, rgb[1] / 255.0f, rgb[2] / 255.0f};
+    if (ImGui::ColorEdit3("##color", color, ImGuiColorEditFlags_NoInputs)) {
+      emit(out, "recolor_part",
+           {document.labels.names[p], std::to_string(static_cast<int>(color[0] * 255.0f + 0.5f)),
+            std::to_string(static_cast<int>(color[1] * 255.0f + 0.5f)),
+            std::to_string(static_cast<int>(color[2] * 255.0f + 0.5f))});
+    }
+    ImGui::SameLine();
+    const std::string label = document.labels.names[p] + "  (" + std::to_string(counts[p]) + " faces)";
+    if (ImGui::Selectable(label.c_str(), static_cast<int>(p) == document.current_part))
+      emit(out, "select_part", {document.labels.names[p]});
+    ImGui::PopID();
+  }
+  ImGui::TextDisabled("unlabelled: %d faces", counts.back());
+  input_text("##new", panel.new_part);
+  ImGui::SameLine();
+  if (ImGui::Button("Create part")) emit(out, "create_part", {panel.new_part});
+  if (document.current_part >= 0) {
+    const std::string& current = document.labels.names[static_cast<std::size_t>(document.current_part)];
+    input_text("##rename", panel.rename_to);
+    ImGui::SameLine();
+    if (ImGui::Button("Rename")) emit(out, "rename_part", {current, panel.rename_to});
+    if (ImGui::Button("Delete part")) emit(out, "delete_part", {current});
+    for (const std::string& other : document.labels.names) {
+      if (other == current) continue;
+      ImGui::SameLine();
+      if (ImGui::Button(("Merge into " + other).c_str())) emit(out, "merge_part", {current, other});
+    }
+  }
+  ImGui::Separator();
+  if (ImGui::Button("Undo")) emit(out, "undo");
+  ImGui::SameLine();
+  if (ImGui::Button("Redo")) emit(out, "redo");
+  input_text("##labels", panel.labels_path);
+  ImGui::SameLine();
+  if (ImGui::Button("Save labels")) emit(out, "save_labels", {panel.labels_path});
+}
+
+void shape_panel(const AppState& state, PanelState& panel, std::vector<Command>& out) {
+  const ShapeDocument& shapes = state.shapes;
+  if (!shapes.loaded()) {
+    ImGui::TextWrapped("Load a model (.prm) to explore its shape spaces.");
+    return;
+  }
+  const core::CategoryModel& model = *shapes.model;
+  ImGui::TextWrapped("%s: %s", model.category.c_str(), shapes.model_path.c_str());
+  const core::ShapeSpace& current = model.spaces[static_cast<std::size_t>(shapes.space)];
+  if (ImGui::BeginCombo("Space", current.name.c_str())) {
+    for (std::size_t s = 0; s < model.spaces.size(); ++s)
+      if (ImGui::Selectable(model.spaces[s].name.c_str(), static_cast<int>(s) == shapes.space))
+        emit(out, "space", {model.spaces[s].name});
+    ImGui::EndCombo();
+  }
+  ImGui::Text("Principal directions (standard deviations)");
+  const Eigen::VectorXd explained = current.explained_fraction();
+  const Eigen::VectorXd& values = shapes.std_devs[static_cast<std::size_t>(shapes.space)];
+  for (int k = 0; k < current.dimensions(); ++k) {
+    char label[64];
+    std::snprintf(label, sizeof(label), "PC%d  %4.1f%%", k + 1, 100.0 * explained[k]);
+    float value = static_cast<float>(values[k]);
+    if (ImGui::SliderFloat(label, &value, -3.0f, 3.0f, "%+.2f"))
+      emit(out, "set_latent", {current.name, std::to_string(k + 1), number_text(value)});
+  }
+  if (ImGui::Button("Reset")) emit(out, "reset_latents", {current.name});
+  ImGui::SameLine();
+  if (ImGui::Button("Random sample")) emit(out, "sample_latents", {std::to_string(panel.sample_seed++)});
+  ImGui::TextDisabled("%d training instances, %d canonical points",
+                      static_cast<int>(model.training.instances.size()),
+                      static_cast<int>(model.canonical.rows()));
+}
+
+void registration_panel(const AppState& state, PanelState& panel, std::vector<Command>& out) {
+  const RegistrationDocument& registration = state.registration;
+  if (registration.observed.rows() == 0) {
+    ImGui::TextWrapped("Load a model and an observed cloud or mesh to register.");
+    return;
+  }
+  ImGui::TextWrapped("%s", registration.observed_path.c_str());
+  ImGui::Text("%d observed points", static_cast<int>(registration.observed.rows()));
+  const char* variants[] = {"holistic", "partwise", "hol+part"};
+  if (panel.variant < 0) panel.variant = static_cast<int>(registration.variant);
+  ImGui::Combo("Variant", &panel.variant, variants, 3);
+  if (ImGui::Button("Register")) emit(out, "register", {variants[panel.variant]});
+  if (!registration.result) return;
+  const core::RegistrationResult& result = *registration.result;
+  const int steps = static_cast<int>(result.history.size());
+  ImGui::Separator();
+  ImGui::Text("%s: %d steps, %.2f s", core::to_string(result.variant).c_str(), steps, result.seconds);
+  int step = registration.step + 1;
+  if (ImGui::SliderInt("Step", &step, 0, steps)) emit(out, "goto_step", {std::to_string(step)});
+  if (ImGui::Button("<")) emit(out, "step", {"-1"});
+  ImGui::SameLine();
+  if (ImGui::Button(">")) emit(out, "step", {"1"});
+  ImGui::SameLine();
+  if (ImGui::Button("Last")) emit(out, "goto_step", {"last"});
+  std::vector<float> costs;
+  for (const core::HistoryStep& h : result.history) costs.push_back(static_cast<float>(h.cost));
+  ImGui::PlotLines("Cost", costs.data(), static_cast<int>(costs.size()), 0, nullptr, FLT_MAX, FLT_MAX,
+                   ImVec2(0.0f, 60.0f));
+  if (registration.step >= 0) {
+    const core::HistoryStep& h = result.history[static_cast<std::size_t>(registration.step)];
+    ImGui::Text("space %s  cost %.4g  at %.3f s", h.space.c_str(), h.cost, h.seconds);
+  }
+  ImGui::Text("fit: mean %.4g, p90 %.4g (data units)", result.fit.mean, result.fit.p90);
+}
+
+}  // namespace
+
+void draw_panels(const AppState& state, PanelState& panel, std::vector<Command>& out) {
+  const ImGuiIO& io = ImGui::GetIO();
+  const float width = static_cast<float>(state.viewport.panel_width);
+  ImGui::SetNextWindowPos(ImVec2(0.0f, 0.0f), ImGuiCond_Always);
+  ImGui::SetNextWindowSize(ImVec2(width, io.DisplaySize.y), ImGuiCond_Always);
+  const ImGuiWindowFlags fixed = ImGuiWindowFlags_NoMove | ImGuiWindowFlags_NoResize |
+                                 ImGuiWindowFlags_NoCollapse | ImGuiWindowFlags_NoSavedSettings;
+  ImGui::Begin("partreg", nullptr, fixed);
+  // Programmatic mode changes (scripts, loads) select their tab once.
+  const bool mode_changed = panel.first_frame || panel.shown_mode != state.mode;
+  panel.first_frame = false;
+  panel.shown_mode = state.mode;
+  if (ImGui::BeginTabBar("modes")) {
+    const std::pair<Mode, const char*> tabs[] = {{Mode::labelling, "Labelling"},
+                                                 {Mode::shape_space, "Shape space"},
+                                                 {Mode::registration, "Registration"}};
+    for (const auto& [mode, title] : tabs) {
+      const ImGuiTabItemFlags flags = mode_changed && mode == state.mode ? ImGuiTabItemFlags_SetSelected : 0;
+      if (!ImGui::BeginTabItem(title, nullptr, flags)) continue;
+      if (mode != state.mode && !mode_changed) emit(out, "mode", {to_string(mode)});
+      if (mode == Mode::labelling) labelling_panel(state, panel, out);
+      if (mode == Mode::shape_space) shape_panel(state, panel, out);
+      if (mode == Mode::registration) registration_panel(state, panel, out);
+      ImGui::EndTabItem();
+    }
+    ImGui::EndTabBar();
+  }
+  // The status line at the bottom of the column.
+  ImGui::SetCursorPosY(io.DisplaySize.y - ImGui::GetTextLineHeightWithSpacing() * 2.5f);
+  ImGui::Separator();
+  if (state.status_is_error)
+    ImGui::TextColored(ImVec4(0.8f, 0.1f, 0.1f, 1.0f), "%s", state.status.c_str());
+  else
+    ImGui::TextWrapped("%s", state.status.c_str());
+  ImGui::End();
+  if (panel.confirm_quit) {
+    ImGui::OpenPopup("Unsaved labels");
+    panel.confirm_quit = false;
+  }
+  if (ImGui::BeginPopupModal("Unsaved labels", nullptr, ImGuiWindowFlags_AlwaysAutoResize)) {
+    ImGui::Text("The labels have unsaved changes.");
+    if (ImGui::Button("Save")) {
+      emit(out, "save_labels", {panel.labels_path});
+      ImGui::CloseCurrentPopup();
+    }
+    ImGui::SameLine();
+    if (ImGui::Button("Quit without saving")) panel.confirmed_quit = true;
+    ImGui::SameLine();
+    if (ImGui::Button("Cancel")) ImGui::CloseCurrentPopup();
+    ImGui::EndPopup();
+  }
+}
+
+}  // namespace partreg::ui
