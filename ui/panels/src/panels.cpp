@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cstdio>
+#include <filesystem>
 
 #include "partreg/ui/labelling.hpp"
 
@@ -13,6 +14,9 @@ namespace {
 void emit(std::vector<Command>& out, const std::string& verb, std::vector<std::string> arguments = {}) {
   out.push_back(make_command(verb, std::move(arguments)));
 }
+
+// File names only: full paths make screenshots depend on where the files are.
+std::string file_name(const std::string& path) { return std::filesystem::path(path).filename().string(); }
 
 // A text field backed by a std::string (ImGui 1.86 without imgui_stdlib's resize callback).
 bool input_text(const char* label, std::string& text) {
@@ -37,7 +41,7 @@ void labelling_panel(const AppState& state, PanelState& panel, std::vector<Comma
         "a mesh.");
     return;
   }
-  ImGui::TextWrapped("%s", document.mesh_path.c_str());
+  ImGui::TextWrapped("%s", file_name(document.mesh_path).c_str());
   ImGui::Text("%d faces%s", static_cast<int>(document.mesh.faces.rows()),
               document.dirty ? "  (unsaved)" : "");
   ImGui::Separator();
@@ -102,7 +106,7 @@ void shape_panel(const AppState& state, PanelState& panel, std::vector<Command>&
     return;
   }
   const core::CategoryModel& model = *shapes.model;
-  ImGui::TextWrapped("%s: %s", model.category.c_str(), shapes.model_path.c_str());
+  ImGui::TextWrapped("%s: %s", model.category.c_str(), file_name(shapes.model_path).c_str());
   const core::ShapeSpace& current = model.spaces[static_cast<std::size_t>(shapes.space)];
   if (ImGui::BeginCombo("Space", current.name.c_str())) {
     for (std::size_t s = 0; s < model.spaces.size(); ++s)
@@ -134,7 +138,7 @@ void registration_panel(const AppState& state, PanelState& panel, std::vector<Co
     ImGui::TextWrapped("Load a model and an observed cloud or mesh to register.");
     return;
   }
-  ImGui::TextWrapped("%s", registration.observed_path.c_str());
+  ImGui::TextWrapped("%s", file_name(registration.observed_path).c_str());
   ImGui::Text("%d observed points", static_cast<int>(registration.observed.rows()));
   const char* variants[] = {"holistic", "partwise", "hol+part"};
   if (panel.variant < 0) panel.variant = static_cast<int>(registration.variant);
