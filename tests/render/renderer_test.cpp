@@ -5,7 +5,9 @@
 
 #include "image_baseline.hpp"
 #include "partreg/core/errors.hpp"
+#include "partreg/render/figure.hpp"
 #include "partreg/render/headless.hpp"
+#include "partreg/render/text.hpp"
 #include "render_scenes.hpp"
 #include "support/temp_dir.hpp"
 
@@ -185,6 +187,31 @@ TEST(Renderer, EmptySceneIsBlankWithAWarning) {
   const std::string warning = ::testing::internal::GetCapturedStderr();
   EXPECT_NE(warning.find("warning"), std::string::npos);
   EXPECT_EQ(covered_fraction(image), 0.0);
+}
+
+TEST(Figure, GridWithTitlesAndLabels) {
+  // Two rows (mug, sphere) by two columns (front, the same shape in grey), one shared camera.
+  Grid grid;
+  grid.columns = 2;
+  grid.row_labels = {"mug", "ball"};
+  grid.column_labels = {"parts", "grey"};
+  Scene grey_mug = mug_scene();
+  grey_mug.point_sets[0].colors.resize(0, 3);
+  Scene ball;
+  MeshItem sphere;
+  sphere.mesh = testing::uv_sphere(0.5, 16, 32);
+  sphere.color = part_color(2);
+  ball.meshes.push_back(sphere);
+  Scene grey_ball = ball;
+  grey_ball.meshes[0].color = neutral_color();
+  grid.panels = {{"A", mug_scene()}, {"B", grey_mug}, {"C", ball}, {"D", grey_ball}};
+  FigureSettings settings;
+  settings.panel_width = 200;
+  settings.panel_height = 150;
+  settings.view = View::front;
+  const Image figure = render_grid(grid, settings);
+  EXPECT_EQ(figure.height, text_line_height(2) + 8 + 2 * 150 + 8);
+  expect_matches_baseline(figure, "figure_grid_titles_labels_front");
 }
 
 TEST(Renderer, ShaderThatDoesNotCompileIsOneClearLine) {

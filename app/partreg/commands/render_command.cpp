@@ -29,21 +29,24 @@ struct RenderOptions {
 };
 
 // The part of each vertex of a PLY mesh written by partreg (`register --mesh-out`, `label`): its vertices
-// read as a cloud, matched to the mesh's by exact position (the mesh reader joins duplicate vertices).
-// Empty when the file has no parts or a vertex has no match.
+// read as a cloud, matched to the mesh's by position in single precision (the mesh reader works in floats
+// and joins duplicate vertices). Empty when the file has no parts or a vertex has no match.
 Eigen::VectorXi mesh_vertex_part(const std::string& path, const core::Mesh& mesh) {
   if (io::lower_extension(path) != ".ply") return {};
   const io::CloudFile vertices = io::read_cloud_file(path);
   const auto found = vertices.attributes.integers.find("part");
   if (found == vertices.attributes.integers.end()) return {};
-  using Key = std::array<double, 3>;
+  using Key = std::array<float, 3>;
+  const auto key = [](const core::Points& points, Eigen::Index i) {
+    return Key{static_cast<float>(points(i, 0)), static_cast<float>(points(i, 1)),
+               static_cast<float>(points(i, 2))};
+  };
   std::map<Key, int> part_at;
   for (Eigen::Index i = 0; i < vertices.cloud.points.rows(); ++i)
-    part_at[{vertices.cloud.points(i, 0), vertices.cloud.points(i, 1), vertices.cloud.points(i, 2)}] =
-        found->second[i];
+    part_at[key(vertices.cloud.points, i)] = found->second[i];
   Eigen::VectorXi part(mesh.vertices.rows());
   for (Eigen::Index i = 0; i < mesh.vertices.rows(); ++i) {
-    const auto match = part_at.find({mesh.vertices(i, 0), mesh.vertices(i, 1), mesh.vertices(i, 2)});
+    const auto match = part_at.find(key(mesh.vertices, i));
     if (match == part_at.end()) return {};
     part[i] = match->second;
   }

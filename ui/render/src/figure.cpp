@@ -146,15 +146,26 @@ Grid shape_space_grid(const core::CategoryModel& model, const std::string& space
   const core::ShapeSpace& space = model.space(space_name);
   if (space.dimensions() == 0) throw InputError("space '" + space_name + "' has no principal directions");
   const Eigen::VectorXd explained = space.explained_fraction();
+  // The deformed canonical is affine in the latent (the blend weights between parts depend only on the
+  // canonical; each space's field is linear in its weights): deform at the mean and at +1 standard deviation
+  // along each direction, then every cell is a combination, q + 1 deformations instead of one per cell.
+  const Eigen::VectorXd zero = Eigen::VectorXd::Zero(space.dimensions());
+  const Scene mean = deformed_canonical(model, walk_result(model, space_name, zero));
   Grid grid;
   grid.columns = static_cast<int>(std_devs.size());
   for (double s : std_devs) grid.column_labels.push_back(s == 0.0 ? "mean" : format("%+g sd", s));
   for (int k = 0; k < space.dimensions(); ++k) {
     grid.row_labels.push_back("PC" + std::to_string(k + 1) + format(" (%.0f%%)", 100.0 * explained[k]));
+    Eigen::VectorXd one_sd = zero;
+    one_sd[k] = std::sqrt(std::max(space.variances[k], 0.0));
+    const Scene step = deformed_canonical(model, walk_result(model, space_name, one_sd));
     for (double s : std_devs) {
-      Eigen::VectorXd latent = Eigen::VectorXd::Zero(space.dimensions());
-      latent[k] = s * std::sqrt(std::max(space.variances[k], 0.0));
-      grid.panels.push_back({"", deformed_canonical(model, walk_result(model, space_name, latent))});
+      Scene cell = mean;
+      for (std::size_t m = 0; m < cell.meshes.size(); ++m)
+        cell.meshes[m].mesh.vertices += s * (step.meshes[m].mesh.vertices - mean.meshes[m].mesh.vertices);
+      for (std::size_t p = 0; p < cell.point_sets.size(); ++p)
+        cell.point_sets[p].positions += s * (step.point_sets[p].positions - mean.point_sets[p].positions);
+      grid.panels.push_back({"", std::move(cell)});
     }
   }
   return grid;
