@@ -2,6 +2,8 @@
 // colours, and one clear line with the right exit code when something is wrong.
 #include <gtest/gtest.h>
 
+#include <cstdlib>
+#include <filesystem>
 #include <set>
 
 #include "partreg/io/cloud_io.hpp"
@@ -105,6 +107,27 @@ TEST(RenderCommand, FailuresAreOneLineWithTheirExitCode) {
   EXPECT_NE(unwritable.output.find("partreg: cannot write"), std::string::npos) << unwritable.output;
   EXPECT_EQ(lines(unwritable.output), 1) << unwritable.output;  // refused before reading anything
   EXPECT_EQ(folder.entries().size(), 2u);                       // the inputs only: nothing half-written
+}
+
+TEST(RenderCommand, AContextThatCannotBeCreatedIsOneLine) {
+  const testing::TempDir folder;
+  write_inputs(folder);
+  const std::string arguments =
+      "render " + (folder / "mug.ply").string() + " --size 64x48 --out " + (folder / "a.png").string();
+  // Mesa then offers at most OpenGL 2.1: no 3.3 core context.
+  setenv("MESA_GL_VERSION_OVERRIDE", "2.1", 1);
+  const auto old_gl = run_partreg(arguments);
+  unsetenv("MESA_GL_VERSION_OVERRIDE");
+  EXPECT_EQ(old_gl.exit_code, 1);
+  EXPECT_NE(old_gl.output.find("partreg: cannot create an OSMesa OpenGL 3.3 core context"), std::string::npos)
+      << old_gl.output;
+  // A driver OSMesa lacks (Mesa itself would crash).
+  setenv("GALLIUM_DRIVER", "zink", 1);
+  const auto no_driver = run_partreg(arguments);
+  unsetenv("GALLIUM_DRIVER");
+  EXPECT_EQ(no_driver.exit_code, 1) << no_driver.output;
+  EXPECT_NE(no_driver.output.find("GALLIUM_DRIVER=zink"), std::string::npos) << no_driver.output;
+  EXPECT_FALSE(std::filesystem::exists(folder / "a.png"));
 }
 
 TEST(FigureCommand, CompareAndSpaceOnASmallSyntheticModel) {

@@ -7,6 +7,8 @@
 #include <GL/osmesa.h>
 // clang-format on
 
+#include <cstdlib>
+#include <string>
 #include <vector>
 
 #include "partreg/core/errors.hpp"
@@ -25,6 +27,11 @@ GlProc osmesa_proc(const char* name) { return reinterpret_cast<GlProc>(OSMesaGet
 }  // namespace
 
 OsMesaContext::OsMesaContext() : state_(std::make_unique<State>()) {
+  // Mesa's OSMesa crashes (it does not fail) when told to use a driver it was not built with.
+  const char* driver = std::getenv("GALLIUM_DRIVER");
+  if (driver && std::string(driver) != "llvmpipe" && std::string(driver) != "softpipe")
+    throw InputError(std::string("cannot create an OSMesa context with GALLIUM_DRIVER=") + driver +
+                     " (OSMesa draws with llvmpipe or softpipe)");
   const int attributes[] = {OSMESA_FORMAT,
                             OSMESA_RGBA,
                             OSMESA_DEPTH_BITS,
