@@ -27,11 +27,11 @@ enum class Antialiasing { multisample, edge, none };
 Antialiasing parse_antialiasing(const std::string& name);
 
 struct RenderSettings {
-  int width = 1280;  ///< image width (pixels)
-  int height = 960;  ///< image height (pixels)
-  Antialiasing antialiasing = Antialiasing::multisample;
+  int width = 1280;                                       ///< image width (pixels)
+  int height = 960;                                       ///< image height (pixels)
+  Antialiasing antialiasing = Antialiasing::multisample;  ///< see Antialiasing for the costs
   int samples = 4;  ///< samples per pixel with multisampling (capped by the GL's limit)
-  Background background = Background::white;
+  Background background = Background::white;  ///< transparent: straight alpha in read_pixels()
 };
 
 namespace detail {
