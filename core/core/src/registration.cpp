@@ -80,8 +80,8 @@ std::vector<Eigen::Matrix3d> base_rotations(const CategoryModel& model, const Ob
   const Eigen::Matrix3d canonical = principal_axes(model.canonical),
                         observed = principal_axes(observation.points);
   std::vector<Eigen::Matrix3d> rotations;
-  for (const Eigen::Vector3d signs : {Eigen::Vector3d(1, 1, 1), Eigen::Vector3d(-1, -1, 1),
-                                      Eigen::Vector3d(-1, 1, -1), Eigen::Vector3d(1, -1, -1)})
+  for (const Eigen::Vector3d& signs : {Eigen::Vector3d(1, 1, 1), Eigen::Vector3d(-1, -1, 1),
+                                       Eigen::Vector3d(-1, 1, -1), Eigen::Vector3d(1, -1, -1)})
     rotations.push_back(observed * signs.asDiagonal() * canonical.transpose());
   return rotations;
 }

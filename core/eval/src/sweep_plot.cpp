@@ -165,7 +165,14 @@ bool write_sweep_plot(const std::filesystem::path& path, const std::vector<EvalR
   text(cr, width / 2.0, 28,
        category + ", " + (partial ? "partial views" : "full views") + ": mean Eq. 5 x 1e4 against the level",
        17, 0.5);
-  draw_legend(cr, 24, 56, variants_of(rows));
+  std::vector<std::string> variants;  // only those this category ran (a category without parts: holistic)
+  for (const std::string& variant : variants_of(rows))
+    if (std::any_of(panels.begin(), panels.end(), [&](const Series& series) {
+          return std::any_of(series.begin(), series.end(),
+                             [&](const auto& line) { return line.first == variant; });
+        }))
+      variants.push_back(variant);
+  draw_legend(cr, 24, 56, variants);
   for (std::size_t k = 0; k < panels.size(); ++k) {
     const Box box{double(k % 2) * width / 2, 70 + double(k / 2) * (height - 70) / 2, width / 2.0,
                   (height - 70) / 2.0};
