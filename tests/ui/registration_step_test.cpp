@@ -1,5 +1,8 @@
 #include <gtest/gtest.h>
 
+#include <filesystem>
+#include <fstream>
+
 #include "partreg/ui/executor.hpp"
 #include "partreg/ui/script.hpp"
 #include "ui/ui_fixtures.hpp"
@@ -28,6 +31,28 @@ TEST(RegistrationStepper, StepsThroughTheHistoryToTheResult) {
   EXPECT_EQ(state.registration.step, -1);  // clamped before the first step
   execute(state, make_command("step", {"1000"}));
   EXPECT_EQ(state.registration.step, steps - 1);
+}
+
+TEST(RegistrationStepper, APartialViewBringsItsViewpointFromViewsJson) {
+  // `partreg views` writes views.json beside the clouds; loading one of them picks up its camera position.
+  const std::filesystem::path folder = std::filesystem::temp_directory_path() / "partreg_ui_viewpoint";
+  std::filesystem::create_directories(folder);
+  std::filesystem::copy_file(testing::observed_cloud_path(), folder / "view_003.ply",
+                             std::filesystem::copy_options::overwrite_existing);
+  std::ofstream(folder / "views.json") << R"({"views": [{"file": "view_002.ply", "viewpoint": [9, 9, 9]},
+                       {"file": "view_003.ply", "viewpoint": [0.5, -1, 2]}]})";
+  AppState state;
+  execute(state, make_command("load", {(folder / "view_003.ply").string()}));
+  ASSERT_TRUE(state.registration.viewpoint);
+  EXPECT_EQ(*state.registration.viewpoint, Eigen::Vector3d(0.5, -1, 2));
+  // Another cloud without a listing has none; the register option sets one.
+  execute(state, make_command("load", {testing::observed_cloud_path().string()}));
+  EXPECT_FALSE(state.registration.viewpoint);
+  execute(state, make_command("load", {testing::small_model_path().string()}));
+  execute(state, make_command("register", {"holistic"}, {{"viewpoint", "1,2,3"}}));
+  EXPECT_EQ(*state.registration.viewpoint, Eigen::Vector3d(1, 2, 3));
+  EXPECT_FALSE(execute_reporting(state, make_command("register", {"holistic"}, {{"viewpoint", "1,2"}})));
+  std::filesystem::remove_all(folder);
 }
 
 TEST(RegistrationStepper, RegisterNeedsAModelAndAnObservation) {

@@ -8,6 +8,7 @@
 #include "partreg/core/deformation.hpp"
 #include "partreg/core/errors.hpp"
 #include "partreg/core/metrics.hpp"
+#include "partreg/core/part_selection.hpp"
 #include "partreg/core/registration.hpp"
 #include "partreg/io/cloud_io.hpp"
 #include "partreg/io/frames_file.hpp"
@@ -23,15 +24,6 @@ struct RegisterOptions {
   std::size_t mesh_samples = 3000;
   core::RegistrationSettings settings;
 };
-
-Eigen::Vector3d parse_vector(const std::string& text, const std::string& option) {
-  std::stringstream in(text);
-  Eigen::Vector3d value;
-  char comma = 0;
-  if (!(in >> value.x() >> comma >> value.y() >> comma >> value.z()) || !in.eof())
-    throw UsageError(option + " takes three numbers separated by commas, not '" + text + "'");
-  return value;
-}
 
 nlohmann::json result_json(const core::RegistrationResult& result, const RegisterOptions& options) {
   nlohmann::json spaces = nlohmann::json::array();
@@ -101,7 +93,8 @@ void run_register(RegisterOptions& options) {
   options.settings.variant = core::parse_variant(options.variant);
   options.settings.direction = core::parse_direction(options.direction);
   options.settings.loss = core::parse_loss(options.loss);
-  if (!options.viewpoint.empty()) options.settings.viewpoint = parse_vector(options.viewpoint, "--viewpoint");
+  if (!options.viewpoint.empty())
+    options.settings.viewpoint = core::parse_vector3(options.viewpoint, "--viewpoint");
   if (options.settings.restarts < 1) throw UsageError("--restarts must be at least 1");
   if (options.frames_out.empty() != options.frames_path.empty())
     throw UsageError("--frames and --frames-out go together");

@@ -138,16 +138,6 @@ void check_output_folder(const std::string& path) {
     throw InputError("cannot write " + path + ": folder " + folder.string() + " does not exist");
 }
 
-Eigen::Vector3d parse_vector3(const std::string& text, const std::string& option) {
-  std::stringstream in(text);
-  Eigen::Vector3d value;
-  char comma = 0, comma2 = 0;
-  if (!(in >> value.x() >> comma >> value.y() >> comma2 >> value.z()) || !in.eof() || comma != ',' ||
-      comma2 != ',')
-    throw UsageError(option + " takes three numbers separated by commas, not '" + text + "'");
-  return value;
-}
-
 void add_render_commands(CLI::App& app) {
   auto o = std::make_shared<RenderOptions>();
   CLI::App* command = app.add_subcommand("render", "Draw clouds and meshes into a PNG, headlessly (OSMesa)");

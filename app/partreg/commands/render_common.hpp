@@ -8,13 +8,15 @@
 #include <string>
 #include <utility>
 
+#include "partreg/core/part_selection.hpp"
+
 namespace partreg::app {
 
 /// "1280x960" -> {1280, 960}; UsageError naming `option` for anything else or a side below 1 pixel.
 std::pair<int, int> parse_size(const std::string& text, const std::string& option);
 
-/// "x,y,z" -> a vector; UsageError naming `option` otherwise.
-Eigen::Vector3d parse_vector3(const std::string& text, const std::string& option);
+/// "x,y,z" -> a vector (the core's parser); UsageError naming the option otherwise.
+using core::parse_vector3;
 
 /// Throws InputError ("cannot write X: folder Y does not exist") before any work when `path`'s folder is
 /// missing.

@@ -5,9 +5,7 @@
 #include "partreg/core/errors.hpp"
 
 namespace partreg::core {
-namespace {
-
-std::vector<double> numbers(const std::string& text, std::size_t count, const std::string& what) {
+std::vector<double> parse_numbers(const std::string& text, std::size_t count, const std::string& what) {
   std::vector<double> values;
   std::stringstream in(text);
   std::string item;
@@ -22,6 +20,13 @@ std::vector<double> numbers(const std::string& text, std::size_t count, const st
   return values;
 }
 
+Eigen::Vector3d parse_vector3(const std::string& text, const std::string& what) {
+  const std::vector<double> v = parse_numbers(text, 3, what);
+  return {v[0], v[1], v[2]};
+}
+
+namespace {
+
 bool contains(const PartSelector& selector, const Eigen::Vector3d& p) {
   if (const auto* box = std::get_if<BoxSelector>(&selector))
     return (p.array() >= box->min.array()).all() && (p.array() <= box->max.array()).all();
@@ -34,20 +39,20 @@ bool contains(const PartSelector& selector, const Eigen::Vector3d& p) {
 }  // namespace
 
 PartSelector parse_box(const std::string& text) {
-  const auto v = numbers(text, 6, "--box");
+  const auto v = parse_numbers(text, 6, "--box");
   const Eigen::Vector3d a(v[0], v[1], v[2]), b(v[3], v[4], v[5]);
   return BoxSelector{a.cwiseMin(b), a.cwiseMax(b)};
 }
 
 PartSelector parse_plane(const std::string& text) {
-  const auto v = numbers(text, 6, "--plane");
+  const auto v = parse_numbers(text, 6, "--plane");
   const Eigen::Vector3d normal(v[3], v[4], v[5]);
   if (normal.norm() == 0.0) throw UsageError("--plane needs a non-zero normal");
   return PlaneSelector{Eigen::Vector3d(v[0], v[1], v[2]), normal.normalized()};
 }
 
 PartSelector parse_sphere(const std::string& text) {
-  const auto v = numbers(text, 4, "--sphere");
+  const auto v = parse_numbers(text, 4, "--sphere");
   if (!(v[3] > 0.0)) throw UsageError("--sphere needs a positive radius");
   return SphereSelector{Eigen::Vector3d(v[0], v[1], v[2]), v[3]};
 }

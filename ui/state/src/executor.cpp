@@ -2,12 +2,17 @@
 
 #include <chrono>
 #include <cmath>
+#include <filesystem>
+#include <fstream>
 #include <functional>
 #include <map>
+#include <nlohmann/json.hpp>
+#include <optional>
 #include <random>
 #include <sstream>
 
 #include "partreg/core/errors.hpp"
+#include "partreg/core/part_selection.hpp"
 #include "partreg/io/atomic_file.hpp"
 #include "partreg/io/cloud_io.hpp"
 #include "partreg/io/geometry_io.hpp"
@@ -62,17 +67,35 @@ Outcome load_model(AppState& state, const std::string& path) {
                  std::to_string(model->spaces.size()) + " spaces)");
 }
 
+// `partreg views` lists each view's file and viewpoint in views.json beside it.
+std::optional<Eigen::Vector3d> viewpoint_from_listing(const std::filesystem::path& cloud) {
+  const std::filesystem::path listing = cloud.parent_path() / "views.json";
+  if (!std::filesystem::exists(listing)) return std::nullopt;
+  try {
+    const nlohmann::json views = nlohmann::json::parse(std::ifstream(listing)).at("views");
+    for (const nlohmann::json& view : views)
+      if (view.at("file").get<std::string>() == cloud.filename().string()) {
+        const std::vector<double> xyz = view.at("viewpoint").get<std::vector<double>>();
+        if (xyz.size() == 3) return Eigen::Vector3d(xyz[0], xyz[1], xyz[2]);
+      }
+  } catch (const nlohmann::json::exception&) {
+    // Not our listing: the observation simply has no known viewpoint.
+  }
+  return std::nullopt;
+}
+
 Outcome load_observed(AppState& state, const std::string& path, int mesh_points) {
   if (mesh_points < 10) throw UsageError("points= must be at least 10");
   core::Cloud cloud = io::read_as_cloud(path, static_cast<std::size_t>(mesh_points), 1);
   state.registration.observed_path = path;
   state.registration.observed = std::move(cloud.points);
+  state.registration.viewpoint = viewpoint_from_listing(path);
   state.registration.result.reset();
   state.registration.step = -1;
   state.mode = Mode::registration;
   fit_view(state);
   return message("loaded " + std::to_string(state.registration.observed.rows()) + " observed points from " +
-                 path);
+                 path + (state.registration.viewpoint ? " (viewpoint from views.json)" : ""));
 }
 
 Outcome load(AppState& state, const Command& command) {
@@ -183,6 +206,10 @@ Outcome run_registration(AppState& state, const Command& command) {
   if (!command.option("loss").empty()) settings.loss = core::parse_loss(command.option("loss"));
   if (!command.option("iterations").empty())
     settings.outer_iterations = integer(command.option("iterations"), "iterations");
+  if (!command.option("viewpoint").empty()) {
+    state.registration.viewpoint = core::parse_vector3(command.option("viewpoint"), "viewpoint=X,Y,Z");
+  }
+  settings.viewpoint = state.registration.viewpoint;
   core::RegistrationResult result =
       core::register_observation(*state.shapes.model, state.registration.observed, settings);
   state.registration.variant = settings.variant;

@@ -23,6 +23,11 @@ struct SphereSelector {
 };
 using PartSelector = std::variant<BoxSelector, PlaneSelector, SphereSelector>;
 
+/// `count` comma-separated numbers ("0.1,2,-3"); UsageError naming `what` for a wrong count or a non-number.
+std::vector<double> parse_numbers(const std::string& text, std::size_t count, const std::string& what);
+/// Three comma-separated numbers as a point or a direction ("x,y,z").
+Eigen::Vector3d parse_vector3(const std::string& text, const std::string& what);
+
 /// Parses "x0,y0,z0,x1,y1,z1" (box), "px,py,pz,nx,ny,nz" (plane) or "cx,cy,cz,r" (sphere); UsageError on
 /// a wrong count, a non-number, a zero normal or a non-positive radius.
 PartSelector parse_box(const std::string& text);

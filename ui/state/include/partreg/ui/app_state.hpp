@@ -55,6 +55,10 @@ struct ShapeDocument {
 struct RegistrationDocument {
   std::string observed_path;
   core::Points observed;  ///< data units, observed frame
+  /// Where the camera was (observed frame, data units): from the views.json that `partreg views` writes
+  /// beside the file, or the register command's viewpoint= option. Registration then counts only the
+  /// canonical points facing it.
+  std::optional<Eigen::Vector3d> viewpoint;
   core::Variant variant = core::Variant::holistic;
   std::optional<core::RegistrationResult> result;
   int step = -1;  ///< index into result->history (-1: before the first step)
