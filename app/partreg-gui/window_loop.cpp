@@ -2,7 +2,9 @@
 // as commands (orbit, pan, zoom, paint, fill, centre, named views), then draws a GuiFrame and blits it.
 #include <chrono>
 #include <cmath>
+#include <future>
 #include <iostream>
+#include <optional>
 
 #include "gui_app.hpp"
 #include "partreg/core/errors.hpp"
@@ -126,6 +128,48 @@ void feed_imgui(GLFWwindow* window, WindowInput& input, std::vector<ui::Command>
 
 }  // namespace
 
+// A registration asked for from the panels runs on its own thread so the window keeps drawing; its result
+// enters the state when it is ready. Scripts stay synchronous, so replays are deterministic.
+class BackgroundRegistration {
+ public:
+  void start(ui::AppState& state, const ui::Command& command) {
+    if (running_.valid()) {
+      report(state, "a registration is already running", true);
+      return;
+    }
+    try {
+      job_ = ui::prepare_registration(state, command);
+    } catch (const std::exception& e) {
+      report(state, e.what(), true);
+      return;
+    }
+    running_ = std::async(std::launch::async, [job = *job_] { return job.run(); });
+    report(state, "registering (" + core::to_string(job_->settings.variant) + ")...", false);
+  }
+
+  void collect(ui::AppState& state) {
+    if (!running_.valid() || running_.wait_for(std::chrono::seconds(0)) != std::future_status::ready) return;
+    try {
+      core::RegistrationResult result = running_.get();
+      if (state.shapes.model != job_->model) {  // another model was loaded meanwhile: the result is stale
+        report(state, "registration finished for a model no longer loaded: discarded", true);
+        return;
+      }
+      report(state, ui::apply_registration(state, *job_, std::move(result)).message, false);
+    } catch (const std::exception& e) {
+      report(state, std::string("registration failed: ") + e.what(), true);
+    }
+  }
+
+ private:
+  static void report(ui::AppState& state, const std::string& text, bool error) {
+    state.status = text;
+    state.status_is_error = error;
+  }
+  std::optional<ui::RegistrationJob> job_;
+  std::future<core::RegistrationResult> running_;
+};
+
 int run_window(const GuiOptions& options, ui::AppState& state, const std::vector<ui::Command>& script) {
   render::GlfwContext context(options.width, options.height, "partreg-gui");
   GLFWwindow* window = context.window();
@@ -134,6 +178,7 @@ int run_window(const GuiOptions& options, ui::AppState& state, const std::vector
   WindowInput input;
   install_callbacks(window, input);
   ViewportMouse mouse;
+  BackgroundRegistration registration;
   std::size_t next = 0;  // the script runs one command per frame, after its tab has been drawn
   int settle = 0;
   auto last = std::chrono::steady_clock::now();
@@ -157,7 +202,13 @@ int run_window(const GuiOptions& options, ui::AppState& state, const std::vector
     frame.draw(state, std::chrono::duration<double>(now - last).count(), commands);
     last = now;
     context.present(frame.framebuffer(), frame.width(), frame.height());
-    for (const ui::Command& command : commands) ui::execute_reporting(state, command);
+    for (const ui::Command& command : commands) {
+      if (command.verb == "register")
+        registration.start(state, command);
+      else
+        ui::execute_reporting(state, command);
+    }
+    registration.collect(state);
     if (frame.panel_state().confirmed_quit) break;
     if (next < script.size() && ++settle >= kSettleFrames) {
       settle = 0;

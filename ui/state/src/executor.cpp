@@ -196,30 +196,8 @@ Outcome sample_latents(AppState& state, const Command& command) {
 // --- registration
 
 Outcome run_registration(AppState& state, const Command& command) {
-  if (!state.shapes.loaded()) throw UsageError("no model is loaded (load MODEL.prm first)");
-  if (state.registration.observed.rows() == 0)
-    throw UsageError("no observation is loaded (load CLOUD first)");
-  core::RegistrationSettings settings;
-  settings.variant = core::parse_variant(command.arguments[0]);
-  if (!command.option("direction").empty())
-    settings.direction = core::parse_direction(command.option("direction"));
-  if (!command.option("loss").empty()) settings.loss = core::parse_loss(command.option("loss"));
-  if (!command.option("iterations").empty())
-    settings.outer_iterations = integer(command.option("iterations"), "iterations");
-  if (!command.option("viewpoint").empty()) {
-    state.registration.viewpoint = core::parse_vector3(command.option("viewpoint"), "viewpoint=X,Y,Z");
-  }
-  settings.viewpoint = state.registration.viewpoint;
-  core::RegistrationResult result =
-      core::register_observation(*state.shapes.model, state.registration.observed, settings);
-  state.registration.variant = settings.variant;
-  state.registration.step = static_cast<int>(result.history.size()) - 1;
-  state.registration.result = std::move(result);
-  state.mode = Mode::registration;
-  std::ostringstream text;
-  text << "registered (" << core::to_string(settings.variant) << ") in " << state.registration.result->seconds
-       << " s, " << state.registration.result->history.size() << " steps";
-  return message(text.str());
+  const RegistrationJob job = prepare_registration(state, command);
+  return apply_registration(state, job, job.run());
 }
 
 Outcome move_step(AppState& state, int target) {
@@ -420,6 +398,35 @@ bool execute_reporting(AppState& state, const Command& command, Outcome* outcome
   }
   state.status_is_error = true;
   return false;
+}
+
+RegistrationJob prepare_registration(AppState& state, const Command& command) {
+  if (!state.shapes.loaded()) throw UsageError("no model is loaded (load MODEL.prm first)");
+  if (state.registration.observed.rows() == 0)
+    throw UsageError("no observation is loaded (load CLOUD first)");
+  RegistrationJob job{state.shapes.model, state.registration.observed, {}};
+  job.settings.variant = core::parse_variant(command.arguments.at(0));
+  if (!command.option("direction").empty())
+    job.settings.direction = core::parse_direction(command.option("direction"));
+  if (!command.option("loss").empty()) job.settings.loss = core::parse_loss(command.option("loss"));
+  if (!command.option("iterations").empty())
+    job.settings.outer_iterations = integer(command.option("iterations"), "iterations");
+  if (!command.option("viewpoint").empty())
+    state.registration.viewpoint = core::parse_vector3(command.option("viewpoint"), "viewpoint=X,Y,Z");
+  job.settings.viewpoint = state.registration.viewpoint;
+  return job;
+}
+
+Outcome apply_registration(AppState& state, const RegistrationJob& job, core::RegistrationResult result) {
+  state.registration.variant = job.settings.variant;
+  state.registration.step = static_cast<int>(result.history.size()) - 1;
+  state.registration.result = std::move(result);
+  state.mode = Mode::registration;
+  std::ostringstream text;
+  text << "registered (" << core::to_string(job.settings.variant) << ") in "
+       << state.registration.result->seconds << " s, " << state.registration.result->history.size()
+       << " steps";
+  return message(text.str());
 }
 
 }  // namespace partreg::ui

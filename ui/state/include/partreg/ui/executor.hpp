@@ -3,8 +3,10 @@
 /// Applying commands to the app state. A command that fails (a file that does not load, a labels file for
 /// another mesh, an unknown part) throws and leaves the state as it was; the caller shows the message.
 
+#include <memory>
 #include <string>
 
+#include "partreg/core/registration.hpp"
 #include "partreg/ui/app_state.hpp"
 #include "partreg/ui/commands.hpp"
 
@@ -15,6 +17,23 @@ struct Outcome {
   std::string message;          ///< one line for the status bar (may be empty)
   std::string screenshot_path;  ///< non-empty: render the current frame and write it here
 };
+
+/// A `register` command made ready to run anywhere: it holds everything the registration reads, so the
+/// window can run it off the UI thread and keep drawing.
+struct RegistrationJob {
+  std::shared_ptr<const core::CategoryModel> model;
+  core::Points observed;  ///< data units
+  core::RegistrationSettings settings;
+  /// Runs the registration (the slow part; touches no state).
+  core::RegistrationResult run() const { return core::register_observation(*model, observed, settings); }
+};
+
+/// Checks a `register` command against the state and prepares its job (UsageError when no model or no
+/// observation is loaded, or for bad options).
+RegistrationJob prepare_registration(AppState& state, const Command& command);
+
+/// Puts a finished registration into the state (the step at its end) and says what it did.
+Outcome apply_registration(AppState& state, const RegistrationJob& job, core::RegistrationResult result);
 
 /// Applies `command`. Throws InputError (bad files, nothing under the brush) or UsageError (bad arguments,
 /// unknown parts or spaces); the state is then unchanged.
