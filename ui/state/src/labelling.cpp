@@ -35,11 +35,6 @@ Eigen::Vector3d centroid(const core::Mesh& mesh, Eigen::Index face) {
          3.0;
 }
 
-// Faces sharing an edge, as a flat adjacency list (CSR).
-struct FaceAdjacency {
-  std::vector<int> start, neighbours;
-};
-
 FaceAdjacency face_adjacency(const core::Mesh& mesh) {
   std::map<std::pair<int, int>, std::vector<int>> edge_faces;
   for (Eigen::Index f = 0; f < mesh.faces.rows(); ++f)
@@ -63,8 +58,10 @@ FaceAdjacency face_adjacency(const core::Mesh& mesh) {
 
 // Faces reachable from `seed` through faces for which `accept` holds (the seed must hold it too).
 template <typename Accept>
-std::vector<int> flood(const core::Mesh& mesh, int seed, Accept accept) {
-  const FaceAdjacency adjacency = face_adjacency(mesh);
+std::vector<int> flood(LabelDocument& document, int seed, Accept accept) {
+  const core::Mesh& mesh = document.mesh;
+  if (!document.adjacency) document.adjacency = std::make_shared<const FaceAdjacency>(face_adjacency(mesh));
+  const FaceAdjacency& adjacency = *document.adjacency;
   std::vector<char> seen(static_cast<std::size_t>(mesh.faces.rows()), 0);
   std::vector<int> reached, stack{seed};
   seen[static_cast<std::size_t>(seed)] = 1;
@@ -193,7 +190,7 @@ int paint_faces(LabelDocument& document, int seed_face, const Eigen::Vector3d& c
   check_seed(document, seed_face);
   const double radius2 = radius * radius;
   // Connected to the picked face, so the brush never jumps through thin walls to the other side.
-  const std::vector<int> faces = flood(document.mesh, seed_face, [&](int f) {
+  const std::vector<int> faces = flood(document, seed_face, [&](int f) {
     return (centroid(document.mesh, f) - centre).squaredNorm() <= radius2;
   });
   return assign(document, faces);
@@ -204,7 +201,7 @@ int fill_faces(LabelDocument& document, int seed_face) {
   check_seed(document, seed_face);
   const int seed_label = document.labels.labels[seed_face];
   const std::vector<int> faces =
-      flood(document.mesh, seed_face, [&](int f) { return document.labels.labels[f] == seed_label; });
+      flood(document, seed_face, [&](int f) { return document.labels.labels[f] == seed_label; });
   return assign(document, faces);
 }
 

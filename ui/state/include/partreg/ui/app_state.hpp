@@ -26,6 +26,12 @@ Mode parse_mode(const std::string& name);
 std::string to_string(Mode mode);
 
 /// A canonical mesh being labelled (data units), one label per face.
+/// Faces sharing an edge with each face, as a flat list (CSR): neighbours of f are
+/// neighbours[start[f] .. start[f + 1]).
+struct FaceAdjacency {
+  std::vector<int> start, neighbours;
+};
+
 struct LabelDocument {
   std::string mesh_path;
   core::Mesh mesh;
@@ -34,6 +40,8 @@ struct LabelDocument {
   double brush_radius_px = 12.0;  ///< default paint radius (pixels at the picked depth)
   bool dirty = false;             ///< changed since loaded or saved
   std::vector<io::PartLabels> undo_stack, redo_stack;
+  /// Built on the first brush stroke or fill and kept while the mesh is (the mesh never changes after load).
+  std::shared_ptr<const FaceAdjacency> adjacency;
 
   bool loaded() const { return mesh.faces.rows() > 0; }
 };
