@@ -50,8 +50,8 @@ void subdivide(core::Mesh& mesh, Eigen::VectorXi& vertex_part, int times) {
   }
 }
 
-// A synthetic mug model (M = 1000, q = 5) whose canonical mesh (about 37,000 vertices) is subdivided
-// `times` times (once: about 148,000 vertices). The target's 50,000 lies between the two sizes measured.
+// A synthetic mug model (M = 1000, q = 5) whose canonical mesh (about 2,450 vertices) is subdivided
+// `times` times (twice: about 37,000 vertices; three times: about 148,000). The target (50,000) lies between.
 std::filesystem::path dense_model_path(int times) {
   const std::string name = "dense_mug_" + std::to_string(times);
   const std::filesystem::path path = testing::ui_fixture_folder() / (name + ".prm");
@@ -74,12 +74,14 @@ std::filesystem::path dense_model_path(int times) {
   return path;
 }
 
+// range(0): subdivisions of the mesh; range(1): 0 = 4x multisampling (the app's default), 1 = none.
 void BM_ShapeSliderFrame(benchmark::State& bench) {
   render::OsMesaContext context;
   ui::AppState state;
   state.viewport.width = 1280, state.viewport.height = 800;
   ui::execute(state, ui::make_command("load", {dense_model_path(static_cast<int>(bench.range(0))).string()}));
-  ui::GuiFrame frame(state.viewport);
+  ui::GuiFrame frame(state.viewport,
+                     bench.range(1) == 0 ? render::Antialiasing::multisample : render::Antialiasing::none);
   std::vector<ui::Command> ignored;
   frame.draw(state, 1.0 / 60, ignored);
   int tick = 0;
@@ -91,7 +93,7 @@ void BM_ShapeSliderFrame(benchmark::State& bench) {
   }
   bench.counters["vertices"] = static_cast<double>(state.shapes.model->canonical_mesh.vertices.rows());
 }
-BENCHMARK(BM_ShapeSliderFrame)->Arg(0)->Arg(1)->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK(BM_ShapeSliderFrame)->Args({2, 0})->Args({2, 1})->Args({3, 0})->Args({3, 1})->Unit(benchmark::kMillisecond)->UseRealTime();
 
 void BM_PaintStroke(benchmark::State& bench) {
   const int times = static_cast<int>(bench.range(0));
@@ -102,6 +104,7 @@ void BM_PaintStroke(benchmark::State& bench) {
   ui::execute(state, ui::make_command("load", {(testing::ui_fixture_folder() / mesh).string()}));
   ui::execute(state, ui::make_command("create_part", {"handle"}));
   ui::execute(state, ui::make_command("camera", {"side"}));
+  ui::execute(state, ui::make_command("paint", {"700", "400"}, {{"radius", "20"}}));  // builds the adjacency
   int tick = 0;
   for (auto _ : bench) {  // strokes across the middle of the mug (the labelling state only; no drawing)
     const int x = 700 + 4 * (tick++ % 50);
@@ -109,7 +112,7 @@ void BM_PaintStroke(benchmark::State& bench) {
   }
   bench.counters["faces"] = static_cast<double>(state.labelling.mesh.faces.rows());
 }
-BENCHMARK(BM_PaintStroke)->Arg(0)->Arg(1)->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK(BM_PaintStroke)->Arg(2)->Arg(3)->Unit(benchmark::kMillisecond)->UseRealTime();
 
 }  // namespace
 }  // namespace partreg
