@@ -6,35 +6,10 @@
 #include <cmath>
 
 #include "partreg/core/errors.hpp"
+#include "support/test_shapes.hpp"
 
 namespace partreg {
 namespace {
-
-// A closed UV sphere of radius 1 around `centre`.
-core::Mesh uv_sphere(const Eigen::Vector3d& centre, int rings = 40, int segments = 80) {
-  core::Mesh mesh;
-  mesh.vertices.resize(2 + (rings - 1) * segments, 3);
-  mesh.vertices.row(0) = (centre + Eigen::Vector3d::UnitY()).transpose();
-  mesh.vertices.row(1) = (centre - Eigen::Vector3d::UnitY()).transpose();
-  for (int r = 1; r < rings; ++r)
-    for (int s = 0; s < segments; ++s) {
-      const double theta = M_PI * r / rings, phi = 2 * M_PI * s / segments;
-      mesh.vertices.row(2 + (r - 1) * segments + s) =
-          (centre +
-           Eigen::Vector3d(std::sin(theta) * std::cos(phi), std::cos(theta), std::sin(theta) * std::sin(phi)))
-              .transpose();
-    }
-  auto at = [&](int r, int s) { return r == 0 ? 0 : r == rings ? 1 : 2 + (r - 1) * segments + s % segments; };
-  std::vector<Eigen::Vector3i> faces;
-  for (int r = 0; r < rings; ++r)
-    for (int s = 0; s < segments; ++s) {
-      if (r > 0) faces.emplace_back(at(r, s), at(r, s + 1), at(r + 1, s));
-      if (r < rings - 1) faces.emplace_back(at(r, s + 1), at(r + 1, s + 1), at(r + 1, s));
-    }
-  mesh.faces.resize(static_cast<Eigen::Index>(faces.size()), 3);
-  for (std::size_t i = 0; i < faces.size(); ++i) mesh.faces.row(static_cast<Eigen::Index>(i)) = faces[i];
-  return mesh;
-}
 
 TEST(SphereDirections, FortyTwoUnitDirectionsEvenlySpreadWithTheTwelveFirst) {
   const std::vector<Eigen::Vector3d> directions = eval::sphere_directions(42);
@@ -62,7 +37,7 @@ TEST(SphereDirections, FortyTwoUnitDirectionsEvenlySpreadWithTheTwelveFirst) {
 
 TEST(ViewCaster, AClosedSphereShowsOnlyTheSideFacingTheCamera) {
   const Eigen::Vector3d centre(0.3, -0.2, 0.5);
-  const eval::ViewCaster caster(uv_sphere(centre));
+  const eval::ViewCaster caster(testing::uv_sphere(1.0, 40, 80, centre));
   for (const Eigen::Vector3d& direction : eval::sphere_directions(12)) {
     const eval::View view = caster.cast(direction);
     ASSERT_GT(view.points.rows(), 2000) << "a sphere filling the image gives thousands of hits";

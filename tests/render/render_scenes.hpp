@@ -6,35 +6,11 @@
 
 #include "partreg/core/types.hpp"
 #include "partreg/render/scene.hpp"
+#include "support/test_shapes.hpp"
 
 namespace partreg::testing {
 
 inline constexpr double kPi = 3.14159265358979323846;
-
-/// A UV sphere of `radius` around `centre`: `rings` x `segments` quads split in two.
-inline core::Mesh uv_sphere(double radius, int rings, int segments,
-                            const Eigen::Vector3d& centre = Eigen::Vector3d::Zero()) {
-  core::Mesh mesh;
-  mesh.vertices.resize((rings + 1) * segments, 3);
-  for (int r = 0; r <= rings; ++r)
-    for (int s = 0; s < segments; ++s) {
-      const double theta = kPi * r / rings, phi = 2.0 * kPi * s / segments;
-      mesh.vertices.row(r * segments + s) =
-          (centre + radius * Eigen::Vector3d(std::sin(theta) * std::sin(phi), std::cos(theta),
-                                             std::sin(theta) * std::cos(phi)))
-              .transpose();
-    }
-  mesh.faces.resize(2 * rings * segments, 3);
-  int f = 0;
-  for (int r = 0; r < rings; ++r)
-    for (int s = 0; s < segments; ++s) {
-      const int a = r * segments + s, b = r * segments + (s + 1) % segments;
-      const int c = a + segments, d = b + segments;
-      mesh.faces.row(f++) << a, c, b;
-      mesh.faces.row(f++) << b, c, d;
-    }
-  return mesh;
-}
 
 /// An open cylinder (no caps) about +Y: the inside shows, so it needs two-sided lighting.
 inline core::Mesh open_cylinder(double radius, double height, int segments) {

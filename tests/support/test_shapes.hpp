@@ -1,6 +1,6 @@
 #pragma once
 /// \file
-/// Small synthetic point sets for core tests: asymmetric, so that a wrong pose cannot fit them.
+/// Small synthetic shapes for tests: asymmetric point sets (a wrong pose cannot fit them) and simple meshes.
 
 #include <Eigen/Geometry>
 #include <cmath>
@@ -43,6 +43,31 @@ inline double rotation_error_deg(const Eigen::Matrix3d& a, const Eigen::Matrix3d
 /// Mean Euclidean distance between corresponding rows.
 inline double mean_row_distance(const core::Points& a, const core::Points& b) {
   return (a - b).rowwise().norm().mean();
+}
+
+/// A UV sphere of `radius` around `centre`: `rings` x `segments` quads split in two.
+inline core::Mesh uv_sphere(double radius, int rings, int segments,
+                            const Eigen::Vector3d& centre = Eigen::Vector3d::Zero()) {
+  core::Mesh mesh;
+  mesh.vertices.resize((rings + 1) * segments, 3);
+  for (int r = 0; r <= rings; ++r)
+    for (int s = 0; s < segments; ++s) {
+      const double theta = M_PI * r / rings, phi = 2.0 * M_PI * s / segments;
+      mesh.vertices.row(r * segments + s) =
+          (centre + radius * Eigen::Vector3d(std::sin(theta) * std::sin(phi), std::cos(theta),
+                                             std::sin(theta) * std::cos(phi)))
+              .transpose();
+    }
+  mesh.faces.resize(2 * rings * segments, 3);
+  int f = 0;
+  for (int r = 0; r < rings; ++r)
+    for (int s = 0; s < segments; ++s) {
+      const int a = r * segments + s, b = r * segments + (s + 1) % segments;
+      const int c = a + segments, d = b + segments;
+      mesh.faces.row(f++) << a, c, b;
+      mesh.faces.row(f++) << b, c, d;
+    }
+  return mesh;
 }
 
 }  // namespace partreg::testing
