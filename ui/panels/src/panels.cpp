@@ -97,6 +97,12 @@ void labelling_panel(const AppState& state, PanelState& panel, std::vector<Comma
   input_text("##labels", panel.labels_path);
   ImGui::SameLine();
   if (ImGui::Button("Save labels")) emit(out, "save_labels", {panel.labels_path});
+  ImGui::Separator();
+  input_text("Dataset", panel.dataset_path);
+  input_text("##model", panel.model_out);
+  ImGui::SameLine();
+  if (ImGui::Button("Train"))
+    out.push_back(make_command("train", {panel.dataset_path}, {{"out", panel.model_out}}));
 }
 
 void shape_panel(const AppState& state, PanelState& panel, std::vector<Command>& out) {
@@ -132,6 +138,20 @@ void shape_panel(const AppState& state, PanelState& panel, std::vector<Command>&
                       static_cast<int>(model.canonical.rows()));
 }
 
+// The evaluation's tools on the observation: a partial view of 42, and the paper's perturbations.
+void evaluation_tools(PanelState& panel, std::vector<Command>& out) {
+  ImGui::InputInt("##view", &panel.view_index);
+  panel.view_index = std::clamp(panel.view_index, 0, 41);
+  ImGui::SameLine();
+  if (ImGui::Button("Partial view")) emit(out, "partial_view", {std::to_string(panel.view_index)});
+  const char* kinds[] = {"noise", "outliers", "rotation", "translation"};
+  ImGui::Combo("##kind", &panel.perturbation, kinds, 4);
+  ImGui::InputFloat("##level", &panel.perturbation_level, 0.0f, 0.0f, "%.3f");
+  ImGui::SameLine();
+  if (ImGui::Button("Perturb"))
+    emit(out, "perturb", {kinds[panel.perturbation], number_text(panel.perturbation_level)});
+}
+
 void registration_panel(const AppState& state, PanelState& panel, std::vector<Command>& out) {
   const RegistrationDocument& registration = state.registration;
   if (registration.observed.rows() == 0) {
@@ -144,6 +164,7 @@ void registration_panel(const AppState& state, PanelState& panel, std::vector<Co
   if (panel.variant < 0) panel.variant = static_cast<int>(registration.variant);
   ImGui::Combo("Variant", &panel.variant, variants, 3);
   if (ImGui::Button("Register")) emit(out, "register", {variants[panel.variant]});
+  evaluation_tools(panel, out);
   if (!registration.result) return;
   const core::RegistrationResult& result = *registration.result;
   const int steps = static_cast<int>(result.history.size());

@@ -18,6 +18,7 @@
 #include "partreg/io/geometry_io.hpp"
 #include "partreg/io/model_file.hpp"
 #include "partreg/ui/labelling.hpp"
+#include "partreg/ui/tools.hpp"
 
 namespace partreg::ui {
 namespace {
@@ -337,6 +338,24 @@ const std::map<std::string, Handler>& handlers() {
       {"reset_latents", reset_latents},
       {"sample_latents", sample_latents},
       {"register", run_registration},
+      {"partial_view",
+       [](AppState& s, const Command& c) {
+         return message(
+             take_partial_view(s, integer(c.arguments[0], "I"), integer(c.option("count", "42"), "count")));
+       }},
+      {"perturb",
+       [](AppState& s, const Command& c) {
+         const int seed = integer(c.option("seed", "1"), "seed");
+         return message(perturb_observation(s, c.arguments[0], number(c.arguments[1], "LEVEL"),
+                                            static_cast<std::uint64_t>(seed)));
+       }},
+      {"train",
+       [](AppState& s, const Command& c) {
+         const std::string out = c.option("out", "model.prm");
+         const std::string text = train_model(s, c.arguments[0], out);
+         load_model(s, out);
+         return message(text);
+       }},
       {"step",
        [](AppState& s, const Command& c) {
          return move_step(s, s.registration.step + integer(c.arguments[0], "N"));

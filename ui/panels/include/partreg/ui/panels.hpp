@@ -23,6 +23,11 @@ struct PanelState {
   std::string screenshot_path = "partreg-gui.png";
   int variant = -1;  ///< 0 holistic, 1 partwise, 2 hol+part; -1 = the last registration's
   int sample_seed = 1;
+  std::string dataset_path = "dataset";  ///< folder the Train button trains on
+  std::string model_out = "model.prm";   ///< where it writes the model
+  int view_index = 0;                    ///< partial view to take (of 42)
+  int perturbation = 0;                  ///< 0 noise, 1 outliers, 2 rotation, 3 translation
+  float perturbation_level = 0.01f;      ///< in the paper's units
   Mode shown_mode = Mode::labelling;
   bool first_frame = true;
   bool confirm_quit = false;    ///< the window asked to close with unsaved labels: ask the user
