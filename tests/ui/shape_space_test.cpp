@@ -54,5 +54,22 @@ TEST(ShapeSpace, PartSpacesMoveOnlyTheirPart) {
   EXPECT_FALSE(execute_reporting(state, make_command("set_latent", {"lid", "1", "1"})));
 }
 
+TEST(ShapeSpace, AnAnimatedSliderSweepsTwoStandardDeviationsEveryFourSeconds) {
+  AppState state;
+  execute(state, make_command("load", {testing::small_model_path().string()}));
+  execute(state, make_command("animate", {"handle", "2"}));
+  const int handle = state.shapes.space;
+  EXPECT_EQ(state.shapes.model->spaces[static_cast<std::size_t>(handle)].name, "handle");
+  advance_animation(state, 1.0);  // a quarter cycle: the top of the sweep
+  EXPECT_NEAR(state.shapes.std_devs[static_cast<std::size_t>(handle)][1], 2.0, 1e-12);
+  advance_animation(state, 2.0);  // three quarters: the bottom
+  EXPECT_NEAR(state.shapes.std_devs[static_cast<std::size_t>(handle)][1], -2.0, 1e-12);
+  EXPECT_EQ(state.shapes.std_devs[static_cast<std::size_t>(handle)][0], 0.0);  // the others stay
+  execute(state, make_command("animate", {"off"}));
+  advance_animation(state, 1.0);
+  EXPECT_NEAR(state.shapes.std_devs[static_cast<std::size_t>(handle)][1], -2.0, 1e-12);
+  EXPECT_FALSE(execute_reporting(state, make_command("animate", {"handle", "9"})));
+}
+
 }  // namespace
 }  // namespace partreg::ui

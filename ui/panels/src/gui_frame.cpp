@@ -6,6 +6,7 @@
 #include <cstdint>
 
 #include "partreg/render/overlay.hpp"
+#include "partreg/ui/executor.hpp"
 #include "partreg/ui/scene_builder.hpp"
 
 namespace partreg::ui {
@@ -75,6 +76,7 @@ GuiFrame::~GuiFrame() { ImGui::DestroyContext(impl_->imgui); }
 
 void GuiFrame::draw(AppState& state, double seconds, std::vector<Command>& emitted) {
   ImGui::SetCurrentContext(impl_->imgui);
+  advance_animation(state, seconds);
   const Viewport& viewport = state.viewport;
   if (viewport.width != width() || viewport.height != height())
     impl_->renderer->resize(viewport.width, viewport.height);

@@ -130,6 +130,15 @@ void shape_panel(const AppState& state, PanelState& panel, std::vector<Command>&
     if (ImGui::SliderFloat(label, &value, -3.0f, 3.0f, "%+.2f"))
       emit(out, "set_latent", {current.name, std::to_string(k + 1), number_text(value)});
   }
+  if (shapes.animated_space == shapes.space) {
+    if (ImGui::Button("Stop")) emit(out, "animate", {"off"});
+  } else {
+    ImGui::InputInt("##animated", &panel.animated_dimension);
+    panel.animated_dimension = std::clamp(panel.animated_dimension, 1, std::max(1, current.dimensions()));
+    ImGui::SameLine();
+    if (ImGui::Button("Animate"))
+      emit(out, "animate", {current.name, std::to_string(panel.animated_dimension)});
+  }
   if (ImGui::Button("Reset")) emit(out, "reset_latents", {current.name});
   ImGui::SameLine();
   if (ImGui::Button("Random sample")) emit(out, "sample_latents", {std::to_string(panel.sample_seed++)});

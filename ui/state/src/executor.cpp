@@ -176,6 +176,26 @@ Outcome set_latent(AppState& state, const Command& command) {
                  " sd");
 }
 
+Outcome animate(AppState& state, const Command& command) {
+  if (!state.shapes.loaded()) throw UsageError("no model is loaded (load MODEL.prm first)");
+  if (command.arguments[0] == "off") {
+    state.shapes.animated_space = state.shapes.animated_dimension = -1;
+    return message("animation stopped");
+  }
+  if (command.arguments.size() < 2) throw UsageError("animate takes SPACE K, or off");
+  const int s = space_index(state, command.arguments[0]);
+  const int k = integer(command.arguments[1], "K");
+  if (k < 1 || k > state.shapes.std_devs[static_cast<std::size_t>(s)].size())
+    throw UsageError("space " + command.arguments[0] + " has dimensions 1 to " +
+                     std::to_string(state.shapes.std_devs[static_cast<std::size_t>(s)].size()));
+  state.shapes.space = s;
+  state.shapes.animated_space = s;
+  state.shapes.animated_dimension = k - 1;
+  state.shapes.animation_phase = 0.0;
+  state.mode = Mode::shape_space;
+  return message("animating " + command.arguments[0] + " direction " + command.arguments[1]);
+}
+
 Outcome reset_latents(AppState& state, const Command& command) {
   if (!state.shapes.loaded()) throw UsageError("no model is loaded (load MODEL.prm first)");
   for (std::size_t s = 0; s < state.shapes.std_devs.size(); ++s)
@@ -338,6 +358,7 @@ const std::map<std::string, Handler>& handlers() {
       {"reset_latents", reset_latents},
       {"sample_latents", sample_latents},
       {"register", run_registration},
+      {"animate", animate},
       {"partial_view",
        [](AppState& s, const Command& c) {
          return message(
@@ -446,6 +467,14 @@ Outcome apply_registration(AppState& state, const RegistrationJob& job, core::Re
        << state.registration.result->seconds << " s, " << state.registration.result->history.size()
        << " steps";
   return message(text.str());
+}
+
+void advance_animation(AppState& state, double seconds) {
+  ShapeDocument& shapes = state.shapes;
+  if (!shapes.loaded() || shapes.animated_space < 0) return;
+  shapes.animation_phase += seconds * 2.0 * M_PI / 4.0;
+  shapes.std_devs[static_cast<std::size_t>(shapes.animated_space)][shapes.animated_dimension] =
+      2.0 * std::sin(shapes.animation_phase);
 }
 
 }  // namespace partreg::ui

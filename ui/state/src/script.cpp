@@ -41,6 +41,7 @@ const std::map<std::string, Signature>& signatures() {
       {"redo", {0, 0, {}, ""}},
       {"space", {1, 1, {}, "holistic | PART"}},
       {"set_latent", {3, 3, {}, "SPACE K VALUE  (K from 1; VALUE in standard deviations)"}},
+      {"animate", {1, 2, {}, "SPACE K | off  (slider K sweeps -2..+2 sd, 4 s a cycle)"}},
       {"reset_latents", {0, 1, {}, "[SPACE]"}},
       {"sample_latents", {1, 1, {}, "SEED  (every slider of the current space drawn from N(0, 1))"}},
       {"register",

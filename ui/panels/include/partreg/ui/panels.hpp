@@ -23,6 +23,7 @@ struct PanelState {
   std::string screenshot_path = "partreg-gui.png";
   int variant = -1;  ///< 0 holistic, 1 partwise, 2 hol+part; -1 = the last registration's
   int sample_seed = 1;
+  int animated_dimension = 1;            ///< the principal direction the Animate button sweeps (from 1)
   std::string dataset_path = "dataset";  ///< folder the Train button trains on
   std::string model_out = "model.prm";   ///< where it writes the model
   int view_index = 0;                    ///< partial view to take (of 42)

@@ -53,6 +53,9 @@ struct ShapeDocument {
   int space = 0;                          ///< index into model->spaces; 0 = holistic
   std::vector<Eigen::VectorXd> std_devs;  ///< per space, one slider value per dimension (standard deviations)
   std::shared_ptr<LiveDeformation> deformation;
+  int animated_space = -1;       ///< the space whose slider `animated_dimension` sweeps by itself (-1: none)
+  int animated_dimension = -1;   ///< 0-based
+  double animation_phase = 0.0;  ///< radians; the slider shows 2 sin(phase), a full sweep every 4 s
 
   bool loaded() const { return model != nullptr; }
   /// The latent of space `s` (slider values times the square roots of the variances).

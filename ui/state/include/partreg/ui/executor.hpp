@@ -35,6 +35,9 @@ RegistrationJob prepare_registration(AppState& state, const Command& command);
 /// Puts a finished registration into the state (the step at its end) and says what it did.
 Outcome apply_registration(AppState& state, const RegistrationJob& job, core::RegistrationResult result);
 
+/// Moves an animated shape slider on by `seconds` (called once per drawn frame; nothing when none runs).
+void advance_animation(AppState& state, double seconds);
+
 /// Applies `command`. Throws InputError (bad files, nothing under the brush) or UsageError (bad arguments,
 /// unknown parts or spaces); the state is then unchanged.
 Outcome execute(AppState& state, const Command& command);
