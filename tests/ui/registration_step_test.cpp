@@ -55,6 +55,15 @@ TEST(RegistrationStepper, APartialViewBringsItsViewpointFromViewsJson) {
   std::filesystem::remove_all(folder);
 }
 
+TEST(RegistrationStepper, FramesOnTheCanonicalAreLoadedForTheLastStep) {
+  AppState state;
+  const std::string frames = std::string(PARTREG_SOURCE_DIR) + "/assets/frames/mug_handle_grasp.json";
+  execute(state, make_command("load_frames", {frames}));
+  ASSERT_EQ(state.registration.frames.size(), 1u);
+  EXPECT_FALSE(execute_reporting(state, make_command("load_frames", {"/nonexistent/frames.json"})));
+  EXPECT_EQ(state.registration.frames.size(), 1u);  // a failed load changes nothing
+}
+
 TEST(RegistrationStepper, RegisterNeedsAModelAndAnObservation) {
   AppState state;
   EXPECT_FALSE(execute_reporting(state, make_command("register", {"holistic"})));

@@ -3,6 +3,8 @@
 #include <cmath>
 #include <limits>
 
+#include "partreg/core/deformation.hpp"
+#include "partreg/core/kdtree.hpp"
 #include "partreg/render/palette.hpp"
 
 namespace partreg::ui {
@@ -52,6 +54,18 @@ void add_shape_space(AppState& state, render::Scene& scene) {
   scene.point_sets.push_back(std::move(points));
 }
 
+// The canonical's frames (grasps) where the registration carries them: RGB triads sized to the shape. The
+// transfer uses the final result, so they show at the last step only.
+void add_frames(const AppState& state, const core::Points& points, render::Scene& scene) {
+  const RegistrationDocument& registration = state.registration;
+  if (registration.frames.empty() || !registration.result || !state.shapes.loaded()) return;
+  if (registration.step != static_cast<int>(registration.result->history.size()) - 1) return;
+  const double length = 0.15 * (points.colwise().maxCoeff() - points.colwise().minCoeff()).norm();
+  for (const core::Frame& frame :
+       core::transfer_frames(*state.shapes.model, *registration.result, registration.frames))
+    scene.line_sets.push_back(render::make_triad(frame.position, frame.rotation, length));
+}
+
 void add_registration(const AppState& state, render::Scene& scene) {
   const core::Points& observed = state.registration.observed;
   if (observed.rows() > 0) {
@@ -77,16 +91,17 @@ void add_registration(const AppState& state, render::Scene& scene) {
   canonical.positions = points;
   canonical.colors = render::part_colors(reached_part);
   scene.point_sets.push_back(canonical);
+  add_frames(state, points, scene);
   if (observed.rows() == 0) return;
   // Correspondences of every 4th canonical point: enough to see the pull without hiding the shapes.
+  const core::KdTree observed_tree(observed);
   std::vector<int> rows;
   for (Eigen::Index i = 0; i < points.rows(); i += 4) rows.push_back(static_cast<int>(i));
   core::Points starts(static_cast<Eigen::Index>(rows.size()), 3), ends(starts.rows(), 3);
   for (std::size_t k = 0; k < rows.size(); ++k) {
-    Eigen::Index nearest = 0;
-    (observed.rowwise() - points.row(rows[k])).rowwise().squaredNorm().minCoeff(&nearest);
     starts.row(static_cast<Eigen::Index>(k)) = points.row(rows[k]);
-    ends.row(static_cast<Eigen::Index>(k)) = observed.row(nearest);
+    ends.row(static_cast<Eigen::Index>(k)) =
+        observed.row(observed_tree.nearest(points.row(rows[k]).transpose()).first);
   }
   scene.line_sets.push_back(render::make_correspondences(starts, ends, render::Color(0.3f, 0.3f, 0.3f)));
 }

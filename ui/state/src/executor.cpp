@@ -15,6 +15,7 @@
 #include "partreg/core/part_selection.hpp"
 #include "partreg/io/atomic_file.hpp"
 #include "partreg/io/cloud_io.hpp"
+#include "partreg/io/frames_file.hpp"
 #include "partreg/io/geometry_io.hpp"
 #include "partreg/io/model_file.hpp"
 #include "partreg/ui/labelling.hpp"
@@ -359,6 +360,12 @@ const std::map<std::string, Handler>& handlers() {
       {"sample_latents", sample_latents},
       {"register", run_registration},
       {"animate", animate},
+      {"load_frames",
+       [](AppState& s, const Command& c) {
+         s.registration.frames = io::read_frames_file(c.arguments[0]);
+         return message("loaded " + std::to_string(s.registration.frames.size()) + " frames from " +
+                        c.arguments[0]);
+       }},
       {"partial_view",
        [](AppState& s, const Command& c) {
          return message(

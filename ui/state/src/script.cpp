@@ -22,6 +22,8 @@ const std::map<std::string, Signature>& signatures() {
   static const std::map<std::string, Signature> table = {
       {"load", {1, 1, {}, "PATH  (a model .prm, a mesh to label, or a cloud to register)"}},
       {"load_observed", {1, 1, {"points"}, "PATH [points=N]  (a cloud or a mesh sampled to N points)"}},
+      {"load_frames",
+       {1, 1, {}, "PATH  (frames on the canonical, e.g. grasps: drawn at the registration's end)"}},
       {"load_labels", {1, 1, {}, "PATH  (a labels file for the loaded mesh)"}},
       {"save_labels", {1, 1, {}, "PATH"}},
       {"mode", {1, 1, {}, "labelling | shape | registration"}},

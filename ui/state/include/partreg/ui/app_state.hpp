@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "partreg/core/category_model.hpp"
+#include "partreg/core/deformation.hpp"
 #include "partreg/core/registration.hpp"
 #include "partreg/io/labels_file.hpp"
 #include "partreg/ui/live_deformation.hpp"
@@ -73,6 +74,9 @@ struct RegistrationDocument {
   core::Variant variant = core::Variant::holistic;
   std::optional<core::RegistrationResult> result;
   int step = -1;  ///< index into result->history (-1: before the first step)
+  /// Frames attached to the canonical (canonical data frame; `partreg register --frames` files), drawn where
+  /// the registration carries them at its last step.
+  std::vector<core::Frame> frames;
 };
 
 struct AppState {
