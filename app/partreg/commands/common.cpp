@@ -6,6 +6,7 @@
 #include <filesystem>
 #include <fstream>
 #include <iostream>
+#include <sstream>
 
 #include "partreg/core/errors.hpp"
 #include "partreg/core/sampling.hpp"
@@ -87,6 +88,15 @@ std::string apply_labels_file(io::Dataset& dataset, const std::string& labels_pa
   found->part = labels.labels;
   dataset.part_names = labels.names;
   return instance;
+}
+
+std::pair<int, int> parse_size(const std::string& text, const std::string& option) {
+  std::stringstream in(text);
+  int width = 0, height = 0;
+  char x = 0;
+  if (!(in >> width >> x >> height) || !in.eof() || (x != 'x' && x != 'X') || width < 1 || height < 1)
+    throw UsageError(option + " takes WIDTHxHEIGHT in pixels (like 1280x960), not '" + text + "'");
+  return {width, height};
 }
 
 StagedFolder::StagedFolder(const std::filesystem::path& destination) : destination_(destination) {

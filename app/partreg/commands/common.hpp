@@ -7,6 +7,7 @@
 #include <filesystem>
 #include <nlohmann/json.hpp>
 #include <string>
+#include <utility>
 
 #include "partreg/core/category_model.hpp"
 #include "partreg/core/types.hpp"
@@ -33,6 +34,9 @@ nlohmann::json spaces_json(const core::CategoryModel& model);
 /// returns that instance's name. UsageError for a dataset with part files; InputError for a mismatch.
 std::string apply_labels_file(io::Dataset& dataset, const std::string& labels_path,
                               const std::string& canonical, const io::DatasetOptions& options);
+
+/// "1280x960" -> {1280, 960}; UsageError naming `option` for anything else or a side below 1 pixel.
+std::pair<int, int> parse_size(const std::string& text, const std::string& option);
 
 /// An output folder written in full or not at all: files go to a hidden sibling folder that commit() renames
 /// to the destination; without commit() (a failure) the sibling is removed. The destination must not exist

@@ -8,6 +8,7 @@
 #include <sstream>
 
 #include "partreg/commands/commands.hpp"
+#include "partreg/commands/common.hpp"
 #include "partreg/commands/render_common.hpp"
 #include "partreg/core/errors.hpp"
 #include "partreg/io/atomic_file.hpp"
@@ -122,15 +123,6 @@ void run_render(const RenderOptions& options) {
 }
 
 }  // namespace
-
-std::pair<int, int> parse_size(const std::string& text, const std::string& option) {
-  std::stringstream in(text);
-  int width = 0, height = 0;
-  char x = 0;
-  if (!(in >> width >> x >> height) || !in.eof() || (x != 'x' && x != 'X') || width < 1 || height < 1)
-    throw UsageError(option + " takes WIDTHxHEIGHT in pixels (like 1280x960), not '" + text + "'");
-  return {width, height};
-}
 
 void check_output_folder(const std::string& path) {
   const std::filesystem::path folder = std::filesystem::path(path).parent_path();

@@ -12,9 +12,6 @@
 
 namespace partreg::app {
 
-/// "1280x960" -> {1280, 960}; UsageError naming `option` for anything else or a side below 1 pixel.
-std::pair<int, int> parse_size(const std::string& text, const std::string& option);
-
 /// "x,y,z" -> a vector (the core's parser); UsageError naming the option otherwise.
 using core::parse_vector3;
 

@@ -3,7 +3,7 @@
 #include <cstdio>
 #include <iostream>
 #include <memory>
-#include <regex>
+#include <tuple>
 
 #include "partreg/commands/commands.hpp"
 #include "partreg/commands/common.hpp"
@@ -25,12 +25,8 @@ struct ViewsOptions {
 };
 
 void parse_resolution(const std::string& text, eval::CameraSettings& camera) {
-  std::smatch match;
-  if (!std::regex_match(text, match, std::regex(R"((\d+)x(\d+))")))
-    throw UsageError("--resolution must look like 160x120, not '" + text + "'");
-  camera.width = std::stoi(match[1]);
-  camera.height = std::stoi(match[2]);
-  if (camera.width < 1 || camera.height < 1 || camera.width > 8192 || camera.height > 8192)
+  std::tie(camera.width, camera.height) = parse_size(text, "--resolution");
+  if (camera.width > 8192 || camera.height > 8192)
     throw UsageError("--resolution must be between 1x1 and 8192x8192");
 }
 

@@ -82,6 +82,10 @@ core::Points add_outliers(const core::Points& points, double ratio, std::mt19937
 
 }  // namespace
 
+core::Points moved_by(const core::Points& points, const Eigen::Isometry3d& T) {
+  return (points * T.linear().transpose()).rowwise() + T.translation().transpose();
+}
+
 Perturbed perturb(const core::Points& points, Perturbation kind, double level, double diagonal,
                   std::uint64_t seed) {
   check_level(kind, level);
@@ -118,8 +122,7 @@ Perturbed perturb(const core::Points& points, Perturbation kind, double level, d
     }
   }
   if (kind == Perturbation::rotation || kind == Perturbation::translation)
-    result.points = (points * result.T_perturbed_original.linear().transpose()).rowwise() +
-                    result.T_perturbed_original.translation().transpose();
+    result.points = moved_by(points, result.T_perturbed_original);
   return result;
 }
 

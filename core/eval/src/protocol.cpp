@@ -130,10 +130,6 @@ std::optional<core::Points> true_correspondents(const EvalInput& input, const co
   return core::select_rows(tested->second, nearest);
 }
 
-core::Points moved(const core::Points& points, const Eigen::Isometry3d& T) {
-  return (points * T.linear().transpose()).rowwise() + T.translation().transpose();
-}
-
 // Registers every variant on one perturbed observation and measures each against the moved ground truth.
 void run_job(const EvalInput& input, const EvalSettings& settings, const core::CategoryModel& model,
              const TestCase& test, const std::optional<core::Points>& correspondents, const Job& job,
@@ -145,9 +141,10 @@ void run_job(const EvalInput& input, const EvalSettings& settings, const core::C
   const std::uint64_t seed = mix(mix(mix(settings.seed, test.instance), observation.view + 1),
                                  static_cast<std::uint64_t>(job.kind) * 8 + (job.level_index + 1));
   const Perturbed perturbed = perturb(observation.points, job.kind, level, test.diagonal, seed);
-  const core::Points truth = moved(instance.points, perturbed.T_perturbed_original);
+  const core::KdTree truth(
+      moved_by(instance.points, perturbed.T_perturbed_original));  // shared by the variants
   const std::optional<core::Points> truth_of_row =
-      correspondents ? std::optional<core::Points>(moved(*correspondents, perturbed.T_perturbed_original))
+      correspondents ? std::optional<core::Points>(moved_by(*correspondents, perturbed.T_perturbed_original))
                      : std::nullopt;
   core::RegistrationSettings registration = settings.registration;
   if (observation.viewpoint) registration.viewpoint = perturbed.T_perturbed_original * *observation.viewpoint;

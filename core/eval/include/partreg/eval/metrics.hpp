@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "partreg/core/kdtree.hpp"
 #include "partreg/core/types.hpp"
 
 namespace partreg::eval {
@@ -28,6 +29,11 @@ struct RegistrationErrors {
 /// diagonal. `truth_of_row` (same rows as `deformed`, or null) holds where each canonical point truly is.
 RegistrationErrors measure_errors(const core::Points& deformed, const Eigen::VectorXi& part,
                                   const std::vector<std::string>& part_names, const core::Points& truth,
+                                  double diagonal, const core::Points* truth_of_row = nullptr);
+
+/// The same with the truth's KD-tree built once by the caller (several registrations against one truth).
+RegistrationErrors measure_errors(const core::Points& deformed, const Eigen::VectorXi& part,
+                                  const std::vector<std::string>& part_names, const core::KdTree& truth,
                                   double diagonal, const core::Points* truth_of_row = nullptr);
 
 }  // namespace partreg::eval

@@ -43,6 +43,9 @@ struct Perturbed {
   Eigen::Isometry3d T_perturbed_original = Eigen::Isometry3d::Identity();
 };
 
+/// `points` moved by the rigid motion T (one point per row).
+core::Points moved_by(const core::Points& points, const Eigen::Isometry3d& T);
+
 /// Applies `kind` at `level` (lengths as a fraction of `diagonal`, the object's bounding-box diagonal in data
 /// units; outliers as a ratio of added to present points; rotation in radians, about the centre of the
 /// points' bounding box). Deterministic for a seed. UsageError for a negative or non-finite level, an outlier

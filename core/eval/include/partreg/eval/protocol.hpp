@@ -21,7 +21,7 @@ namespace partreg::eval {
 /// What is observed of each tested instance.
 struct Protocol {
   std::string name = "paper";
-  int views = 42;        ///< partial views per instance (a tessellated sphere's vertex count; 0 = none)
+  int views = 42;       ///< partial views per instance (a tessellated sphere's vertex count; 0 = none)
   int sweep_views = 6;  ///< of those, how many also get the perturbation sweeps (spread evenly, every k-th)
   std::vector<int> levels = {0, 1, 2, 3, 4};  ///< which of the paper's five levels each sweep uses
   int max_test_instances = 0;                 ///< 0 = every instance; else that many, evenly spread
