@@ -1,5 +1,6 @@
 // The GLFW window: feeds mouse and keyboard to ImGui and, where ImGui does not want them, to the viewport
 // as commands (orbit, pan, zoom, paint, fill, centre, named views), then draws a GuiFrame and blits it.
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <future>
@@ -27,11 +28,13 @@ int run_window(const GuiOptions&, ui::AppState&, const std::vector<ui::Command>&
 #else
 namespace {
 
-// Scroll and characters arrive by callback; the rest is polled each frame.
+// Scroll and characters arrive by callback; the rest is polled each frame. `any` says whether anything at
+// all happened since the last frame (the loop sleeps when nothing does).
 struct WindowInput {
   double scroll = 0.0;
   std::vector<unsigned> characters;
   std::vector<std::pair<int, bool> > keys;
+  bool any = false;
 };
 
 WindowInput* input_of(GLFWwindow* window) {
@@ -40,12 +43,23 @@ WindowInput* input_of(GLFWwindow* window) {
 
 void install_callbacks(GLFWwindow* window, WindowInput& input) {
   glfwSetWindowUserPointer(window, &input);
-  glfwSetScrollCallback(window, [](GLFWwindow* w, double, double dy) { input_of(w)->scroll += dy; });
-  glfwSetCharCallback(window, [](GLFWwindow* w, unsigned c) { input_of(w)->characters.push_back(c); });
+  glfwSetScrollCallback(window, [](GLFWwindow* w, double, double dy) {
+    input_of(w)->scroll += dy;
+    input_of(w)->any = true;
+  });
+  glfwSetCharCallback(window, [](GLFWwindow* w, unsigned c) {
+    input_of(w)->characters.push_back(c);
+    input_of(w)->any = true;
+  });
   glfwSetKeyCallback(window, [](GLFWwindow* w, int key, int, int action, int) {
     if (key >= 0 && key < 512 && action != GLFW_REPEAT)
       input_of(w)->keys.emplace_back(key, action == GLFW_PRESS);
+    input_of(w)->any = true;
   });
+  glfwSetCursorPosCallback(window, [](GLFWwindow* w, double, double) { input_of(w)->any = true; });
+  glfwSetMouseButtonCallback(window, [](GLFWwindow* w, int, int, int) { input_of(w)->any = true; });
+  glfwSetWindowRefreshCallback(window, [](GLFWwindow* w) { input_of(w)->any = true; });
+  glfwSetFramebufferSizeCallback(window, [](GLFWwindow* w, int, int) { input_of(w)->any = true; });
 }
 
 void map_keys(ImGuiIO& io) {
@@ -126,6 +140,36 @@ void feed_imgui(GLFWwindow* window, WindowInput& input, std::vector<ui::Command>
                 glfwGetKey(window, GLFW_KEY_RIGHT_SHIFT) == GLFW_PRESS;
 }
 
+// Commands that move what the viewport shows while the mouse drags: their frames may be drawn interactively.
+bool moves_view(const std::vector<ui::Command>& commands) {
+  return std::any_of(commands.begin(), commands.end(), [](const ui::Command& command) {
+    return command.verb == "orbit" || command.verb == "pan" || command.verb == "zoom" ||
+           command.verb == "paint";
+  });
+}
+
+// When the window may sleep: after a few frames in which nothing happened (ImGui settles hover highlights
+// and the full-quality frame after an interactive one over a frame or two). It then waits for an event, so
+// an idle window costs nothing.
+class FramePacer {
+ public:
+  /// Waits for an event when idle, else only polls. Returns false when it woke with nothing to draw.
+  bool wait(const WindowInput& input, bool busy) {
+    if (quiet_frames_ < kQuietFrames || busy) {
+      glfwPollEvents();
+      return true;
+    }
+    glfwWaitEventsTimeout(0.5);
+    return input.any;
+  }
+  /// After a frame: whether anything happened or is still moving.
+  void drawn(bool active) { quiet_frames_ = active ? 0 : quiet_frames_ + 1; }
+
+ private:
+  static constexpr int kQuietFrames = 3;
+  int quiet_frames_ = 0;
+};
+
 }  // namespace
 
 // A registration asked for from the panels runs on its own thread so the window keeps drawing; its result
@@ -146,6 +190,8 @@ class BackgroundRegistration {
     running_ = std::async(std::launch::async, [job = *job_] { return job.run(); });
     report(state, "registering (" + core::to_string(job_->settings.variant) + ")...", false);
   }
+
+  bool running() const { return running_.valid(); }
 
   void collect(ui::AppState& state) {
     if (!running_.valid() || running_.wait_for(std::chrono::seconds(0)) != std::future_status::ready) return;
@@ -181,9 +227,11 @@ int run_window(const GuiOptions& options, ui::AppState& state, const std::vector
   BackgroundRegistration registration;
   std::size_t next = 0;  // the script runs one command per frame, after its tab has been drawn
   int settle = 0;
+  FramePacer pacer;
   auto last = std::chrono::steady_clock::now();
   while (!state.quit_requested) {
-    glfwPollEvents();
+    const bool busy = registration.running() || next < script.size() || frame.animating();
+    if (!pacer.wait(input, busy) && !glfwWindowShouldClose(window)) continue;
     if (glfwWindowShouldClose(window)) {
       if (!state.labelling.dirty || frame.panel_state().confirmed_quit) break;
       glfwSetWindowShouldClose(window, GLFW_FALSE);
@@ -196,11 +244,16 @@ int run_window(const GuiOptions& options, ui::AppState& state, const std::vector
       commands.push_back(ui::make_command("resize", {std::to_string(width), std::to_string(height)}));
     feed_imgui(window, input, commands);
     mouse.update(window, frame, frame.panel_state(), input, commands);
+    const bool active = input.any || !commands.empty() || frame.animating();
+    // Multisampling costs llvmpipe two to three times as long: frames drawn while something moves skip it.
+    const bool moving = frame.animating() || moves_view(commands);
     input = WindowInput{};
     install_callbacks(window, input);
     const auto now = std::chrono::steady_clock::now();
-    frame.draw(state, std::chrono::duration<double>(now - last).count(), commands);
+    frame.draw(state, std::min(std::chrono::duration<double>(now - last).count(), 0.1), commands,
+               moving ? render::FrameQuality::interactive : render::FrameQuality::full);
     last = now;
+    pacer.drawn(active || moving);
     context.present(frame.framebuffer(), frame.width(), frame.height());
     for (const ui::Command& command : commands) {
       if (command.verb == "register")

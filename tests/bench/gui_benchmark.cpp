@@ -11,6 +11,7 @@
 #include "partreg/render/osmesa_context.hpp"
 #include "partreg/ui/executor.hpp"
 #include "partreg/ui/gui_frame.hpp"
+#include "partreg/ui/scene_builder.hpp"
 #include "ui/ui_fixtures.hpp"
 
 namespace partreg {
@@ -74,26 +75,46 @@ std::filesystem::path dense_model_path(int times) {
   return path;
 }
 
-// range(0): subdivisions of the mesh; range(1): 0 = 4x multisampling (the app's default), 1 = none.
+// range(0): subdivisions of the mesh; range(1): 0 = 4x multisampling (the app's default) at full quality,
+// 1 = the same renderer drawing interactive frames (one sample per pixel: what the window draws while a
+// slider is dragged), 2 = no antialiasing at all.
 void BM_ShapeSliderFrame(benchmark::State& bench) {
   render::OsMesaContext context;
   ui::AppState state;
   state.viewport.width = 1280, state.viewport.height = 800;
   ui::execute(state, ui::make_command("load", {dense_model_path(static_cast<int>(bench.range(0))).string()}));
+  const auto quality = bench.range(1) == 1 ? render::FrameQuality::interactive : render::FrameQuality::full;
   ui::GuiFrame frame(state.viewport,
-                     bench.range(1) == 0 ? render::Antialiasing::multisample : render::Antialiasing::none);
+                     bench.range(1) == 2 ? render::Antialiasing::none : render::Antialiasing::multisample);
   std::vector<ui::Command> ignored;
   frame.draw(state, 1.0 / 60, ignored);
   int tick = 0;
   for (auto _ : bench) {
     const std::string value = std::to_string(-2.0 + 0.1 * (tick++ % 40));
     ui::execute(state, ui::make_command("set_latent", {"holistic", "1", value}));
-    frame.draw(state, 1.0 / 60, ignored);
+    frame.draw(state, 1.0 / 60, ignored, quality);
     benchmark::DoNotOptimize(frame.read_pixels());  // waits for llvmpipe to finish the frame
   }
   bench.counters["vertices"] = static_cast<double>(state.shapes.model->canonical_mesh.vertices.rows());
 }
-BENCHMARK(BM_ShapeSliderFrame)->Args({2, 0})->Args({2, 1})->Args({3, 0})->Args({3, 1})->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK(BM_ShapeSliderFrame)
+    ->ArgsProduct({{2, 3}, {0, 1, 2}})
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime();
+
+// The CPU share of a slider frame: re-deform by Eq. 4 and build the scene the renderer draws (no GL).
+void BM_ShapeSliderScene(benchmark::State& bench) {
+  ui::AppState state;
+  state.viewport.width = 1280, state.viewport.height = 800;
+  ui::execute(state, ui::make_command("load", {dense_model_path(static_cast<int>(bench.range(0))).string()}));
+  int tick = 0;
+  for (auto _ : bench) {
+    const std::string value = std::to_string(-2.0 + 0.1 * (tick++ % 40));
+    ui::execute(state, ui::make_command("set_latent", {"holistic", "1", value}));
+    benchmark::DoNotOptimize(ui::build_scene(state));
+  }
+}
+BENCHMARK(BM_ShapeSliderScene)->Arg(2)->Arg(3)->Unit(benchmark::kMillisecond)->UseRealTime();
 
 void BM_PaintStroke(benchmark::State& bench) {
   const int times = static_cast<int>(bench.range(0));

@@ -168,6 +168,58 @@ TEST(Renderer, AntialiasingSoftensEdges) {
   EXPECT_GT(partly_covered(Antialiasing::edge), 100);
 }
 
+TEST(Renderer, InteractiveFramesSkipMultisamplingFullFramesDoNot) {
+  MeshItem sphere;
+  sphere.mesh = testing::uv_sphere(1.0, 24, 48);
+  Scene scene;
+  scene.meshes.push_back(sphere);
+  OsMesaContext context;
+  Renderer renderer(small(Background::transparent));
+  const Camera camera = fit_camera(scene.bounds(), View::front, double(kWidth) / kHeight);
+  const auto partly_covered = [&](FrameQuality quality) {
+    renderer.draw(scene, camera, quality);
+    const Image image = renderer.read_pixels();
+    int count = 0;
+    for (std::size_t i = 3; i < image.rgba.size(); i += 4) count += image.rgba[i] > 0 && image.rgba[i] < 255;
+    return count;
+  };
+  EXPECT_GT(partly_covered(FrameQuality::full), 100);
+  EXPECT_EQ(partly_covered(FrameQuality::interactive), 0);
+  EXPECT_GT(partly_covered(FrameQuality::full), 100);  // and back
+}
+
+TEST(Renderer, MeshesChangedBetweenFramesLookAsIfDrawnAfresh) {
+  // The renderer keeps each mesh's buffers from the last frame and sends only what changed: whatever
+  // changes (vertices, faces, colours, the number of meshes), the frame must equal a new renderer's.
+  const auto sphere = [](double radius, int rings, const Color& color) {
+    MeshItem item;
+    item.mesh = testing::uv_sphere(radius, rings, 2 * rings);
+    item.color = color;
+    return item;
+  };
+  Scene first;
+  first.meshes = {sphere(1.0, 12, part_color(0)), sphere(0.5, 8, part_color(1))};
+  first.meshes[1].mesh.vertices.col(0).array() += 1.5;
+  Scene second = first;
+  second.meshes[0].mesh.vertices *= 0.8;  // a slider move
+  second.meshes[1].vertex_colors =
+      part_colors(Eigen::VectorXi::Constant(second.meshes[1].mesh.vertices.rows(), 3));  // recoloured
+  second.meshes.push_back(sphere(0.3, 6, part_color(4)));                                // one more
+  second.meshes[2].mesh.vertices.col(1).array() += 1.2;
+  Scene third = second;
+  third.meshes[0] = sphere(0.9, 16, part_color(0));  // new faces
+  third.meshes.pop_back();
+  OsMesaContext context;
+  Renderer kept(small());
+  const Camera camera = fit_camera(second.bounds(), View::iso, double(kWidth) / kHeight);
+  for (const Scene* scene : {&first, &second, &third, &first}) {
+    const Image reused = kept.render(*scene, camera);
+    Renderer fresh(small());
+    const Image expected = fresh.render(*scene, camera);
+    EXPECT_EQ(reused.rgba, expected.rgba) << "scene with " << scene->meshes.size() << " meshes";
+  }
+}
+
 TEST(Renderer, EdgeSmoothedSplatsAndMesh) {
   RenderSettings settings = small();
   settings.antialiasing = Antialiasing::edge;

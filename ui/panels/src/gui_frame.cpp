@@ -48,6 +48,7 @@ struct GuiFrame::Impl {
   std::unique_ptr<render::Renderer> renderer;
   std::unique_ptr<render::OverlayRenderer> overlay;
   ImGuiContext* imgui = nullptr;
+  bool animating = false;
 };
 
 GuiFrame::GuiFrame(const Viewport& viewport, render::Antialiasing antialiasing)
@@ -74,19 +75,21 @@ GuiFrame::GuiFrame(const Viewport& viewport, render::Antialiasing antialiasing)
 
 GuiFrame::~GuiFrame() { ImGui::DestroyContext(impl_->imgui); }
 
-void GuiFrame::draw(AppState& state, double seconds, std::vector<Command>& emitted) {
+void GuiFrame::draw(AppState& state, double seconds, std::vector<Command>& emitted,
+                    render::FrameQuality quality) {
   ImGui::SetCurrentContext(impl_->imgui);
   advance_animation(state, seconds);
   const Viewport& viewport = state.viewport;
   if (viewport.width != width() || viewport.height != height())
     impl_->renderer->resize(viewport.width, viewport.height);
-  impl_->renderer->draw(build_scene(state), render_camera(state));
+  impl_->renderer->draw(build_scene(state), render_camera(state), quality);
   ImGuiIO& io = ImGui::GetIO();
   io.DisplaySize = ImVec2(static_cast<float>(viewport.width), static_cast<float>(viewport.height));
   io.DeltaTime = static_cast<float>(seconds > 0.0 ? seconds : 1.0 / 60.0);
   ImGui::NewFrame();
   if (state.show_panels) draw_panels(state, panel_, emitted);
   ImGui::Render();
+  impl_->animating = ImGui::IsAnyItemActive() || state.shapes.animated_space >= 0;
   impl_->overlay->draw(framebuffer(), width(), height(), overlay_lists(*ImGui::GetDrawData()));
 }
 
@@ -94,6 +97,7 @@ render::Image GuiFrame::read_pixels() const { return impl_->renderer->read_pixel
 unsigned GuiFrame::framebuffer() const { return impl_->renderer->resolved_framebuffer(); }
 int GuiFrame::width() const { return impl_->renderer->settings().width; }
 int GuiFrame::height() const { return impl_->renderer->settings().height; }
+bool GuiFrame::animating() const { return impl_->animating; }
 bool GuiFrame::wants_mouse() const {
   ImGui::SetCurrentContext(impl_->imgui);
   return ImGui::GetIO().WantCaptureMouse;

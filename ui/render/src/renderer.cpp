@@ -18,15 +18,28 @@ using detail::Program;
 using detail::Renderbuffer;
 using detail::VertexArray;
 
-// GL state of one renderer: programs, the framebuffer drawn into (multisampled or not) and the
-// single-sampled one it is resolved into, and the buffers reused from frame to frame.
+// What one mesh of the last frame left on the GPU, with the data it came from: what has not changed since
+// is not converted or sent again (llvmpipe shares the two cores with everything else the app does).
+struct MeshUpload {
+  Buffer position_buffer, normal_buffer, color_buffer, index_buffer;
+  core::Points vertices, given_normals;  // as in the MeshItem
+  Eigen::Vector3d origin = Eigen::Vector3d::Constant(std::nan(""));
+  core::Faces faces;
+  Colors colors;  // per vertex, uniform colours spread out
+};
+
+// GL state of one renderer: programs, the multisampled framebuffer drawn into (full-quality frames with
+// multisampling only) and the single-sampled one it is resolved into (or drawn into directly), and the
+// buffers reused from frame to frame.
 struct Renderer::Gpu {
   Program splat_program, mesh_program, line_program;
-  Framebuffer draw_framebuffer, resolved_framebuffer;
-  Renderbuffer draw_color, draw_depth, resolved_color;
+  Framebuffer multisample_framebuffer, resolved_framebuffer;
+  Renderbuffer multisample_color, multisample_depth, resolved_color, resolved_depth;
   int samples = 1;
+  bool drew_multisampled = false;  // the last frame waits in the multisampled framebuffer for its resolve
   VertexArray vertex_array;
-  Buffer positions, normals, colors, indices;
+  Buffer positions, colors;  // splats and lines
+  std::vector<MeshUpload> meshes;
 };
 
 namespace detail {
@@ -54,15 +67,32 @@ void check_gl(const char* what) {
   throw InputError(std::string("OpenGL error ") + code + " while " + what);
 }
 
-// Uploads rows as a float attribute at `location`.
+// Points `location` at the three floats per vertex in `buffer`.
+void bind_attribute(GLuint buffer, GLuint location) {
+  glBindBuffer(GL_ARRAY_BUFFER, buffer);
+  glEnableVertexAttribArray(location);
+  glVertexAttribPointer(location, 3, GL_FLOAT, GL_FALSE, 0, nullptr);
+}
+
+// Sends rows as floats into `buffer`.
 template <typename Rows>
-void upload_attribute(GLuint buffer, GLuint location, const Rows& rows) {
+void upload_rows(GLuint buffer, const Rows& rows) {
   const FloatRows data = rows.template cast<float>();
   glBindBuffer(GL_ARRAY_BUFFER, buffer);
   glBufferData(GL_ARRAY_BUFFER, static_cast<GLsizeiptr>(data.size() * sizeof(float)), data.data(),
                GL_STREAM_DRAW);
-  glEnableVertexAttribArray(location);
-  glVertexAttribPointer(location, 3, GL_FLOAT, GL_FALSE, 0, nullptr);
+}
+
+// Uploads rows as a float attribute at `location`.
+template <typename Rows>
+void upload_attribute(GLuint buffer, GLuint location, const Rows& rows) {
+  upload_rows(buffer, rows);
+  bind_attribute(buffer, location);
+}
+
+template <typename Matrix>
+bool same(const Matrix& a, const Matrix& b) {
+  return a.rows() == b.rows() && a.cols() == b.cols() && a == b;
 }
 
 // Per-element colours, or the uniform colour repeated.
@@ -135,6 +165,41 @@ Framebuffer make_framebuffer(GLuint color, GLuint depth) {
   return Framebuffer(name);
 }
 
+// Brings `upload` up to `item` (drawn relative to `origin`), sending only what changed since the last frame.
+void update_mesh_upload(MeshUpload& upload, const MeshItem& item, const Eigen::Vector3d& origin) {
+  const core::Mesh& mesh = item.mesh;
+  if (upload.position_buffer.get() == 0) {
+    upload.position_buffer = detail::make_buffer();
+    upload.normal_buffer = detail::make_buffer();
+    upload.color_buffer = detail::make_buffer();
+    upload.index_buffer = detail::make_buffer();
+  }
+  const bool faces_changed = !same(upload.faces, mesh.faces);
+  if (faces_changed) {
+    upload.faces = mesh.faces;
+    const Eigen::Matrix<GLuint, Eigen::Dynamic, 3, Eigen::RowMajor> indices = mesh.faces.cast<GLuint>();
+    glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, upload.index_buffer.get());
+    glBufferData(GL_ELEMENT_ARRAY_BUFFER, static_cast<GLsizeiptr>(indices.size() * sizeof(GLuint)),
+                 indices.data(), GL_STATIC_DRAW);
+  }
+  const bool vertices_changed = !same(upload.vertices, mesh.vertices);
+  if (vertices_changed || upload.origin != origin) {
+    upload.vertices = mesh.vertices;
+    upload.origin = origin;
+    upload_rows(upload.position_buffer.get(), centred(mesh.vertices, origin));
+  }
+  if (vertices_changed || faces_changed || !same(upload.given_normals, mesh.normals)) {
+    upload.given_normals = mesh.normals;
+    upload_rows(upload.normal_buffer.get(),
+                mesh.normals.rows() == mesh.vertices.rows() ? mesh.normals : vertex_normals(mesh));
+  }
+  Colors colors = colors_or(item.vertex_colors, item.color, mesh.vertices.rows(), "a mesh");
+  if (!same(upload.colors, colors)) {
+    upload_rows(upload.color_buffer.get(), colors);
+    upload.colors = std::move(colors);
+  }
+}
+
 }  // namespace
 
 Background parse_background(const std::string& name) {
@@ -156,9 +221,7 @@ Renderer::Renderer(const RenderSettings& settings) : settings_(settings), gpu_(s
   gpu_->line_program = Program(compile_embedded_program("line.vert", "line.geom", "line.frag"));
   gpu_->vertex_array = detail::make_vertex_array();
   gpu_->positions = detail::make_buffer();
-  gpu_->normals = detail::make_buffer();
   gpu_->colors = detail::make_buffer();
-  gpu_->indices = detail::make_buffer();
   resize(settings.width, settings.height);
 }
 
@@ -177,17 +240,23 @@ void Renderer::resize(int width, int height) {
   gpu.samples = settings_.antialiasing == Antialiasing::multisample
                     ? std::clamp(settings_.samples, 1, std::max(1, static_cast<int>(max_samples)))
                     : 1;
-  gpu.draw_depth = make_renderbuffer(GL_DEPTH_COMPONENT24, gpu.samples, width, height);
-  gpu.draw_color = make_renderbuffer(GL_RGBA8, gpu.samples, width, height);
-  gpu.draw_framebuffer = make_framebuffer(gpu.draw_color.get(), gpu.draw_depth.get());
+  if (gpu.samples > 1) {
+    gpu.multisample_depth = make_renderbuffer(GL_DEPTH_COMPONENT24, gpu.samples, width, height);
+    gpu.multisample_color = make_renderbuffer(GL_RGBA8, gpu.samples, width, height);
+    gpu.multisample_framebuffer = make_framebuffer(gpu.multisample_color.get(), gpu.multisample_depth.get());
+  }
+  gpu.resolved_depth = make_renderbuffer(GL_DEPTH_COMPONENT24, 1, width, height);
   gpu.resolved_color = make_renderbuffer(GL_RGBA8, 1, width, height);
-  gpu.resolved_framebuffer = make_framebuffer(gpu.resolved_color.get(), 0);
+  gpu.resolved_framebuffer = make_framebuffer(gpu.resolved_color.get(), gpu.resolved_depth.get());
   check_gl("creating the framebuffer");
 }
 
-void Renderer::draw(const Scene& scene, const Camera& camera) {
+void Renderer::draw(const Scene& scene, const Camera& camera, FrameQuality quality) {
   const Frame frame = make_frame(scene, camera, settings_.width, settings_.height);
-  glBindFramebuffer(GL_FRAMEBUFFER, gpu_->draw_framebuffer.get());
+  Gpu& gpu = *gpu_;
+  gpu.drew_multisampled = gpu.samples > 1 && quality == FrameQuality::full;
+  glBindFramebuffer(GL_FRAMEBUFFER, gpu.drew_multisampled ? gpu.multisample_framebuffer.get()
+                                                          : gpu.resolved_framebuffer.get());
   glViewport(0, 0, frame.width, frame.height);
   if (settings_.background == Background::white)
     glClearColor(1.0f, 1.0f, 1.0f, 1.0f);
@@ -198,8 +267,9 @@ void Renderer::draw(const Scene& scene, const Camera& camera) {
   glDepthFunc(GL_LESS);
   glDisable(GL_BLEND);
   glDisable(GL_CULL_FACE);
-  glBindVertexArray(gpu_->vertex_array.get());
-  for (const MeshItem& item : scene.meshes) draw_mesh(item, frame);
+  glBindVertexArray(gpu.vertex_array.get());
+  if (gpu.meshes.size() != scene.meshes.size()) gpu.meshes.resize(scene.meshes.size());
+  for (std::size_t slot = 0; slot < scene.meshes.size(); ++slot) draw_mesh(scene.meshes[slot], slot, frame);
   draw_splats(scene.point_sets, frame);
   draw_lines(scene.line_sets, frame);
   finish_frame();
@@ -207,24 +277,20 @@ void Renderer::draw(const Scene& scene, const Camera& camera) {
   check_gl("drawing");
 }
 
-void Renderer::draw_mesh(const MeshItem& item, const Frame& frame) {
+void Renderer::draw_mesh(const MeshItem& item, std::size_t slot, const Frame& frame) {
   const core::Mesh& mesh = item.mesh;
   if (mesh.faces.rows() == 0) return;
   if (mesh.faces.minCoeff() < 0 || mesh.faces.maxCoeff() >= mesh.vertices.rows())
     throw UsageError("a mesh's faces index vertices it does not have");
-  Gpu& gpu = *gpu_;
-  const GLuint program = gpu.mesh_program.get();
+  const GLuint program = gpu_->mesh_program.get();
   use_program(program, frame);
-  upload_attribute(gpu.positions.get(), 0, centred(mesh.vertices, frame.origin));
-  upload_attribute(gpu.normals.get(), 1,
-                   mesh.normals.rows() == mesh.vertices.rows() ? mesh.normals : vertex_normals(mesh));
-  upload_attribute(gpu.colors.get(), 2,
-                   colors_or(item.vertex_colors, item.color, mesh.vertices.rows(), "a mesh"));
-  const Eigen::Matrix<GLuint, Eigen::Dynamic, 3, Eigen::RowMajor> indices = mesh.faces.cast<GLuint>();
-  glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, gpu.indices.get());
-  glBufferData(GL_ELEMENT_ARRAY_BUFFER, static_cast<GLsizeiptr>(indices.size() * sizeof(GLuint)),
-               indices.data(), GL_STREAM_DRAW);
-  const auto count = static_cast<GLsizei>(indices.size());
+  update_mesh_upload(gpu_->meshes[slot], item, frame.origin);
+  const MeshUpload& upload = gpu_->meshes[slot];
+  bind_attribute(upload.position_buffer.get(), 0);
+  bind_attribute(upload.normal_buffer.get(), 1);
+  bind_attribute(upload.color_buffer.get(), 2);
+  glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, upload.index_buffer.get());
+  const auto count = static_cast<GLsizei>(mesh.faces.size());
   glUniform1i(uniform(program, "flat_shading"), item.shading == Shading::flat ? 1 : 0);
   glUniform1i(uniform(program, "solid_color"), 0);
   if (item.wireframe) {
@@ -250,9 +316,9 @@ void Renderer::draw_splats(const std::vector<PointSet>& sets, const Frame& frame
   const GLuint program = gpu.splat_program.get();
   use_program(program, frame);
   glUniform1f(uniform(program, "viewport_height"), static_cast<float>(frame.height));
-  glUniform1i(uniform(program, "rim_coverage"), gpu.samples > 1 ? 1 : 0);
+  glUniform1i(uniform(program, "rim_coverage"), gpu.drew_multisampled ? 1 : 0);
   glEnable(GL_PROGRAM_POINT_SIZE);
-  if (gpu.samples > 1) {
+  if (gpu.drew_multisampled) {
     // The splat's rim coverage (its alpha) becomes sample coverage; the stored alpha is then 1.
     glEnable(GL_SAMPLE_ALPHA_TO_COVERAGE);
     glEnable(GL_SAMPLE_ALPHA_TO_ONE);
@@ -297,10 +363,11 @@ void Renderer::draw_lines(const std::vector<LineSet>& sets, const Frame& frame) 
   }
 }
 
-// Into the resolved framebuffer: a multisample resolve, or a plain copy.
+// A multisampled frame is resolved into the single-sampled framebuffer; other frames were drawn there.
 void Renderer::finish_frame() {
+  if (!gpu_->drew_multisampled) return;
   const int width = settings_.width, height = settings_.height;
-  glBindFramebuffer(GL_READ_FRAMEBUFFER, gpu_->draw_framebuffer.get());
+  glBindFramebuffer(GL_READ_FRAMEBUFFER, gpu_->multisample_framebuffer.get());
   glBindFramebuffer(GL_DRAW_FRAMEBUFFER, gpu_->resolved_framebuffer.get());
   glBlitFramebuffer(0, 0, width, height, 0, 0, width, height, GL_COLOR_BUFFER_BIT, GL_NEAREST);
 }

@@ -27,8 +27,13 @@ class GuiFrame {
 
   /// Draws one frame of `state` (resizing to its viewport). Mouse and keyboard input must already be in
   /// ImGui::GetIO() (the window does that; headless frames have no mouse). Commands the panels emit are
-  /// appended to `emitted`. `seconds` is the time since the last frame.
-  void draw(AppState& state, double seconds, std::vector<Command>& emitted);
+  /// appended to `emitted`. `seconds` is the time since the last frame. Interactive frames skip
+  /// multisampling (see render::FrameQuality): the window asks for them while something moves.
+  void draw(AppState& state, double seconds, std::vector<Command>& emitted,
+            render::FrameQuality quality = render::FrameQuality::full);
+  /// True while the last frame's panels hold an item (a slider being dragged) or a shape animates: the next
+  /// frames will change, so they may be drawn interactively.
+  bool animating() const;
   /// The last frame, top row first.
   render::Image read_pixels() const;
   /// The GL framebuffer holding the last frame (a window blits it).

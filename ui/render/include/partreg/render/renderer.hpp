@@ -26,6 +26,10 @@ enum class Antialiasing { multisample, edge, none };
 /// "msaa" | "edge" | "none"; UsageError otherwise.
 Antialiasing parse_antialiasing(const std::string& name);
 
+/// What a frame may cost. Interactive frames (drawn while a slider, the camera or an animation moves) use one
+/// sample per pixel whatever the settings say; the frame drawn once things stop gets the full quality.
+enum class FrameQuality { full, interactive };
+
 struct RenderSettings {
   int width = 1280;                                       ///< image width (pixels)
   int height = 960;                                       ///< image height (pixels)
@@ -54,8 +58,11 @@ class Renderer {
   void resize(int width, int height);
   const RenderSettings& settings() const { return settings_; }
 
-  /// Draws `scene` seen by `camera` into the framebuffer. An empty scene gives the bare background.
-  void draw(const Scene& scene, const Camera& camera);
+  /// Draws `scene` seen by `camera` into the framebuffer. An empty scene gives the bare background. A mesh
+  /// whose vertices, faces or colours equal those of the mesh drawn at the same position of the last frame's
+  /// scene.meshes keeps what it has on the GPU: orbiting re-sends nothing, a slider move only positions
+  /// and normals.
+  void draw(const Scene& scene, const Camera& camera, FrameQuality quality = FrameQuality::full);
   /// The last drawn frame (resolved, edge-smoothed when asked), top row first.
   Image read_pixels() const;
   /// draw() then read_pixels().
@@ -65,7 +72,7 @@ class Renderer {
 
  private:
   struct Gpu;
-  void draw_mesh(const MeshItem& item, const detail::FrameState& frame);
+  void draw_mesh(const MeshItem& item, std::size_t slot, const detail::FrameState& frame);
   void draw_splats(const std::vector<PointSet>& sets, const detail::FrameState& frame);
   void draw_lines(const std::vector<LineSet>& sets, const detail::FrameState& frame);
   void finish_frame();
