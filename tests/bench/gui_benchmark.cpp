@@ -4,11 +4,16 @@
 // per stroke event.
 #include <benchmark/benchmark.h>
 
+#include <cstdlib>
 #include <map>
 
 #include "partreg/io/mesh_io.hpp"
 #include "partreg/io/model_file.hpp"
+#include "partreg/render/mesh_proxy.hpp"
 #include "partreg/render/osmesa_context.hpp"
+#ifdef PARTREG_BENCH_HAS_WINDOW
+#include "partreg/render/glfw_context.hpp"
+#endif
 #include "partreg/ui/executor.hpp"
 #include "partreg/ui/gui_frame.hpp"
 #include "partreg/ui/scene_builder.hpp"
@@ -87,7 +92,7 @@ void BM_ShapeSliderFrame(benchmark::State& bench) {
   ui::GuiFrame frame(state.viewport,
                      bench.range(1) == 2 ? render::Antialiasing::none : render::Antialiasing::multisample);
   std::vector<ui::Command> ignored;
-  frame.draw(state, 1.0 / 60, ignored);
+  frame.draw(state, 1.0 / 60, ignored, quality);  // builds the interactive proxy (BM_MeshProxyBuild)
   int tick = 0;
   for (auto _ : bench) {
     const std::string value = std::to_string(-2.0 + 0.1 * (tick++ % 40));
@@ -102,6 +107,40 @@ BENCHMARK(BM_ShapeSliderFrame)
     ->Unit(benchmark::kMillisecond)
     ->UseRealTime();
 
+#ifdef PARTREG_BENCH_HAS_WINDOW
+// The same slider move in the real window (GLFW, needs a display: `xvfb-run -a gui_benchmark`), shown the way
+// the app shows it: drawn, blitted to the window, swapped. range(0): subdivisions; range(1): 0 = full quality
+// (4x multisampling), 1 = interactive (what the window draws while the slider is dragged).
+void BM_ShapeSliderWindowFrame(benchmark::State& bench) {
+  if (!std::getenv("DISPLAY")) {
+    bench.SkipWithError("needs a display: run under xvfb-run -a");
+    return;
+  }
+  ui::AppState state;
+  state.viewport.width = 1280, state.viewport.height = 800;
+  // One window for every run: GLFW under Xvfb refuses a third window after two were closed.
+  static render::GlfwContext context(state.viewport.width, state.viewport.height, "gui_benchmark");
+  context.make_current();
+  ui::execute(state, ui::make_command("load", {dense_model_path(static_cast<int>(bench.range(0))).string()}));
+  ui::GuiFrame frame(state.viewport);
+  const auto quality = bench.range(1) == 1 ? render::FrameQuality::interactive : render::FrameQuality::full;
+  std::vector<ui::Command> ignored;
+  frame.draw(state, 1.0 / 60, ignored, quality);
+  int tick = 0;
+  for (auto _ : bench) {
+    const std::string value = std::to_string(-2.0 + 0.1 * (tick++ % 40));
+    ui::execute(state, ui::make_command("set_latent", {"holistic", "1", value}));
+    frame.draw(state, 1.0 / 60, ignored, quality);
+    context.present(frame.framebuffer(), frame.width(), frame.height());
+  }
+  bench.counters["vertices"] = static_cast<double>(state.shapes.model->canonical_mesh.vertices.rows());
+}
+BENCHMARK(BM_ShapeSliderWindowFrame)
+    ->ArgsProduct({{2, 3}, {0, 1}})
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime();
+#endif
+
 // The CPU share of a slider frame: re-deform by Eq. 4 and build the scene the renderer draws (no GL).
 void BM_ShapeSliderScene(benchmark::State& bench) {
   ui::AppState state;
@@ -115,6 +154,17 @@ void BM_ShapeSliderScene(benchmark::State& bench) {
   }
 }
 BENCHMARK(BM_ShapeSliderScene)->Arg(2)->Arg(3)->Unit(benchmark::kMillisecond)->UseRealTime();
+
+// The proxy an interactive frame draws for a dense mesh is built on the first such frame (the first slider
+// drag after loading a model): a one-off pause of this length.
+void BM_MeshProxyBuild(benchmark::State& bench) {
+  const core::CategoryModel model = io::read_model(dense_model_path(static_cast<int>(bench.range(0))));
+  for (auto _ : bench)
+    benchmark::DoNotOptimize(
+        render::MeshProxy(model.canonical_mesh, render::RenderSettings().interactive_triangles));
+  bench.counters["vertices"] = static_cast<double>(model.canonical_mesh.vertices.rows());
+}
+BENCHMARK(BM_MeshProxyBuild)->Arg(2)->Arg(3)->Unit(benchmark::kMillisecond)->UseRealTime();
 
 void BM_PaintStroke(benchmark::State& bench) {
   const int times = static_cast<int>(bench.range(0));

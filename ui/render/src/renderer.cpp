@@ -5,10 +5,12 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <memory>
 #include <vector>
 
 #include "gl_objects.hpp"
 #include "partreg/core/errors.hpp"
+#include "partreg/render/mesh_proxy.hpp"
 
 namespace partreg::render {
 
@@ -26,17 +28,26 @@ struct MeshUpload {
   Eigen::Vector3d origin = Eigen::Vector3d::Constant(std::nan(""));
   core::Faces faces;
   Colors colors;  // per vertex, uniform colours spread out
+  // Interactive frames of a dense mesh draw its proxy (built for `faces` when first needed) instead.
+  std::unique_ptr<MeshProxy> proxy;
+  core::Faces proxy_source;
+  std::unique_ptr<MeshUpload> proxy_upload;
 };
 
-// GL state of one renderer: programs, the multisampled framebuffer drawn into (full-quality frames with
-// multisampling only) and the single-sampled one it is resolved into (or drawn into directly), and the
-// buffers reused from frame to frame.
+// A framebuffer the scene is drawn into.
+struct DrawTarget {
+  Framebuffer framebuffer;
+  Renderbuffer color, depth;
+};
+
+// GL state of one renderer: programs, the framebuffers (the single-sampled `resolved` one holds every
+// finished frame; full-quality frames with multisampling are drawn into `multisampled` and resolved into it),
+// and the buffers reused from frame to frame.
 struct Renderer::Gpu {
   Program splat_program, mesh_program, line_program;
-  Framebuffer multisample_framebuffer, resolved_framebuffer;
-  Renderbuffer multisample_color, multisample_depth, resolved_color, resolved_depth;
+  DrawTarget multisampled, resolved;
+  bool drew_multisampled = false;  // the last frame waits in `multisampled` for its resolve
   int samples = 1;
-  bool drew_multisampled = false;  // the last frame waits in the multisampled framebuffer for its resolve
   VertexArray vertex_array;
   Buffer positions, colors;  // splats and lines
   std::vector<MeshUpload> meshes;
@@ -50,6 +61,8 @@ struct FrameState {
   Eigen::Vector3d origin;
   Eigen::Matrix4f view, projection;
   int width = 0, height = 0;
+  bool multisampled = false;
+  bool interactive = false;
 };
 
 }  // namespace detail
@@ -165,8 +178,17 @@ Framebuffer make_framebuffer(GLuint color, GLuint depth) {
   return Framebuffer(name);
 }
 
+DrawTarget make_target(int samples, int width, int height) {
+  DrawTarget target;
+  target.depth = make_renderbuffer(GL_DEPTH_COMPONENT24, samples, width, height);
+  target.color = make_renderbuffer(GL_RGBA8, samples, width, height);
+  target.framebuffer = make_framebuffer(target.color.get(), target.depth.get());
+  return target;
+}
+
 // Brings `upload` up to `item` (drawn relative to `origin`), sending only what changed since the last frame.
-void update_mesh_upload(MeshUpload& upload, const MeshItem& item, const Eigen::Vector3d& origin) {
+const MeshUpload& update_mesh_upload(MeshUpload& upload, const MeshItem& item,
+                                     const Eigen::Vector3d& origin) {
   const core::Mesh& mesh = item.mesh;
   if (upload.position_buffer.get() == 0) {
     upload.position_buffer = detail::make_buffer();
@@ -198,6 +220,27 @@ void update_mesh_upload(MeshUpload& upload, const MeshItem& item, const Eigen::V
     upload_rows(upload.color_buffer.get(), colors);
     upload.colors = std::move(colors);
   }
+  return upload;
+}
+
+// The proxy of a dense mesh, as a mesh item of its own (each cluster takes its representative's colour),
+// brought up to date in the proxy's upload.
+const MeshUpload& update_proxy_upload(MeshUpload& full, const MeshItem& item, const Eigen::Vector3d& origin,
+                                      int max_triangles) {
+  if (!full.proxy || !same(full.proxy_source, item.mesh.faces)) {
+    full.proxy = std::make_unique<MeshProxy>(item.mesh, max_triangles);
+    full.proxy_source = item.mesh.faces;
+  }
+  if (!full.proxy_upload) full.proxy_upload = std::make_unique<MeshUpload>();
+  const MeshProxy& proxy = *full.proxy;
+  MeshItem coarse;
+  coarse.mesh.vertices = proxy.vertices(item.mesh.vertices);
+  coarse.mesh.faces = proxy.faces();
+  const Colors colors = colors_or(item.vertex_colors, item.color, item.mesh.vertices.rows(), "a mesh");
+  coarse.vertex_colors.resize(proxy.cluster_count(), 3);
+  for (int c = 0; c < proxy.cluster_count(); ++c)
+    coarse.vertex_colors.row(c) = colors.row(proxy.representatives()[static_cast<std::size_t>(c)]);
+  return update_mesh_upload(*full.proxy_upload, coarse, origin);
 }
 
 }  // namespace
@@ -240,23 +283,17 @@ void Renderer::resize(int width, int height) {
   gpu.samples = settings_.antialiasing == Antialiasing::multisample
                     ? std::clamp(settings_.samples, 1, std::max(1, static_cast<int>(max_samples)))
                     : 1;
-  if (gpu.samples > 1) {
-    gpu.multisample_depth = make_renderbuffer(GL_DEPTH_COMPONENT24, gpu.samples, width, height);
-    gpu.multisample_color = make_renderbuffer(GL_RGBA8, gpu.samples, width, height);
-    gpu.multisample_framebuffer = make_framebuffer(gpu.multisample_color.get(), gpu.multisample_depth.get());
-  }
-  gpu.resolved_depth = make_renderbuffer(GL_DEPTH_COMPONENT24, 1, width, height);
-  gpu.resolved_color = make_renderbuffer(GL_RGBA8, 1, width, height);
-  gpu.resolved_framebuffer = make_framebuffer(gpu.resolved_color.get(), gpu.resolved_depth.get());
+  gpu.multisampled = gpu.samples > 1 ? make_target(gpu.samples, width, height) : DrawTarget();
+  gpu.resolved = make_target(1, width, height);
   check_gl("creating the framebuffer");
 }
 
 void Renderer::draw(const Scene& scene, const Camera& camera, FrameQuality quality) {
-  const Frame frame = make_frame(scene, camera, settings_.width, settings_.height);
   Gpu& gpu = *gpu_;
-  gpu.drew_multisampled = gpu.samples > 1 && quality == FrameQuality::full;
-  glBindFramebuffer(GL_FRAMEBUFFER, gpu.drew_multisampled ? gpu.multisample_framebuffer.get()
-                                                          : gpu.resolved_framebuffer.get());
+  Frame frame = make_frame(scene, camera, settings_.width, settings_.height);
+  frame.interactive = quality == FrameQuality::interactive;
+  frame.multisampled = gpu.drew_multisampled = gpu.samples > 1 && !frame.interactive;
+  glBindFramebuffer(GL_FRAMEBUFFER, (frame.multisampled ? gpu.multisampled : gpu.resolved).framebuffer.get());
   glViewport(0, 0, frame.width, frame.height);
   if (settings_.background == Background::white)
     glClearColor(1.0f, 1.0f, 1.0f, 1.0f);
@@ -284,23 +321,27 @@ void Renderer::draw_mesh(const MeshItem& item, std::size_t slot, const Frame& fr
     throw UsageError("a mesh's faces index vertices it does not have");
   const GLuint program = gpu_->mesh_program.get();
   use_program(program, frame);
-  update_mesh_upload(gpu_->meshes[slot], item, frame.origin);
-  const MeshUpload& upload = gpu_->meshes[slot];
+  MeshUpload& full = gpu_->meshes[slot];
+  const bool coarse = frame.interactive && mesh.faces.rows() > settings_.interactive_triangles;
+  const MeshUpload& upload =
+      coarse ? update_proxy_upload(full, item, frame.origin, settings_.interactive_triangles)
+             : update_mesh_upload(full, item, frame.origin);
   bind_attribute(upload.position_buffer.get(), 0);
   bind_attribute(upload.normal_buffer.get(), 1);
   bind_attribute(upload.color_buffer.get(), 2);
   glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, upload.index_buffer.get());
-  const auto count = static_cast<GLsizei>(mesh.faces.size());
+  const auto count = static_cast<GLsizei>(upload.faces.size());
   glUniform1i(uniform(program, "flat_shading"), item.shading == Shading::flat ? 1 : 0);
   glUniform1i(uniform(program, "solid_color"), 0);
-  if (item.wireframe) {
+  const bool wireframe = item.wireframe && !coarse;  // a proxy's edges are not the mesh's
+  if (wireframe) {
     // The surface is pushed back a little so that its own edges win the depth test.
     glEnable(GL_POLYGON_OFFSET_FILL);
     glPolygonOffset(1.0f, 1.0f);
   }
   glDrawElements(GL_TRIANGLES, count, GL_UNSIGNED_INT, nullptr);
   glDisable(GL_POLYGON_OFFSET_FILL);
-  if (item.wireframe) {
+  if (wireframe) {
     glUniform1i(uniform(program, "solid_color"), 1);
     glUniform3fv(uniform(program, "wire_color"), 1, item.wire_color.data());
     glPolygonMode(GL_FRONT_AND_BACK, GL_LINE);
@@ -316,9 +357,9 @@ void Renderer::draw_splats(const std::vector<PointSet>& sets, const Frame& frame
   const GLuint program = gpu.splat_program.get();
   use_program(program, frame);
   glUniform1f(uniform(program, "viewport_height"), static_cast<float>(frame.height));
-  glUniform1i(uniform(program, "rim_coverage"), gpu.drew_multisampled ? 1 : 0);
+  glUniform1i(uniform(program, "rim_coverage"), frame.multisampled ? 1 : 0);
   glEnable(GL_PROGRAM_POINT_SIZE);
-  if (gpu.drew_multisampled) {
+  if (frame.multisampled) {
     // The splat's rim coverage (its alpha) becomes sample coverage; the stored alpha is then 1.
     glEnable(GL_SAMPLE_ALPHA_TO_COVERAGE);
     glEnable(GL_SAMPLE_ALPHA_TO_ONE);
@@ -367,8 +408,8 @@ void Renderer::draw_lines(const std::vector<LineSet>& sets, const Frame& frame) 
 void Renderer::finish_frame() {
   if (!gpu_->drew_multisampled) return;
   const int width = settings_.width, height = settings_.height;
-  glBindFramebuffer(GL_READ_FRAMEBUFFER, gpu_->multisample_framebuffer.get());
-  glBindFramebuffer(GL_DRAW_FRAMEBUFFER, gpu_->resolved_framebuffer.get());
+  glBindFramebuffer(GL_READ_FRAMEBUFFER, gpu_->multisampled.framebuffer.get());
+  glBindFramebuffer(GL_DRAW_FRAMEBUFFER, gpu_->resolved.framebuffer.get());
   glBlitFramebuffer(0, 0, width, height, 0, 0, width, height, GL_COLOR_BUFFER_BIT, GL_NEAREST);
 }
 
@@ -376,7 +417,7 @@ Image Renderer::read_pixels() const {
   const int width = settings_.width, height = settings_.height;
   Image image(width, height);
   std::vector<std::uint8_t> bottom_up(image.rgba.size());
-  glBindFramebuffer(GL_READ_FRAMEBUFFER, gpu_->resolved_framebuffer.get());
+  glBindFramebuffer(GL_READ_FRAMEBUFFER, gpu_->resolved.framebuffer.get());
   glPixelStorei(GL_PACK_ALIGNMENT, 1);
   glReadPixels(0, 0, width, height, GL_RGBA, GL_UNSIGNED_BYTE, bottom_up.data());
   check_gl("reading the image back");
@@ -402,6 +443,6 @@ Image Renderer::render(const Scene& scene, const Camera& camera) {
   return read_pixels();
 }
 
-unsigned Renderer::resolved_framebuffer() const { return gpu_->resolved_framebuffer.get(); }
+unsigned Renderer::resolved_framebuffer() const { return gpu_->resolved.framebuffer.get(); }
 
 }  // namespace partreg::render

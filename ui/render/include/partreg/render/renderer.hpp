@@ -27,7 +27,9 @@ enum class Antialiasing { multisample, edge, none };
 Antialiasing parse_antialiasing(const std::string& name);
 
 /// What a frame may cost. Interactive frames (drawn while a slider, the camera or an animation moves) use one
-/// sample per pixel whatever the settings say; the frame drawn once things stop gets the full quality.
+/// sample per pixel and draw dense meshes as coarse proxies (MeshProxy): on llvmpipe a frame's cost grows
+/// with the samples and the triangles, not the pixels. The frame drawn once things stop gets the full
+/// quality.
 enum class FrameQuality { full, interactive };
 
 struct RenderSettings {
@@ -36,6 +38,8 @@ struct RenderSettings {
   Antialiasing antialiasing = Antialiasing::multisample;  ///< see Antialiasing for the costs
   int samples = 4;  ///< samples per pixel with multisampling (capped by the GL's limit)
   Background background = Background::white;  ///< transparent: straight alpha in read_pixels()
+  /// Meshes with more triangles are drawn as a proxy of at most this many in interactive frames.
+  int interactive_triangles = 20000;
 };
 
 namespace detail {
