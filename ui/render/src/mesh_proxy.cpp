@@ -6,6 +6,8 @@
 #include <unordered_map>
 #include <unordered_set>
 
+#include "partreg/render/scene.hpp"
+
 namespace partreg::render {
 namespace {
 
@@ -16,7 +18,21 @@ struct Clustering {
   core::Faces faces;
 };
 
-Clustering cluster(const core::Mesh& mesh, int resolution) {
+// Which of the six axis directions a vertex's normal is closest to: clusters split by it, so that the two
+// sides of a thin wall or a handle (close in space, facing apart) do not collapse into one.
+std::vector<int> normal_bins(const core::Mesh& mesh) {
+  const core::Points normals =
+      mesh.normals.rows() == mesh.vertices.rows() ? mesh.normals : vertex_normals(mesh);
+  std::vector<int> bins(static_cast<std::size_t>(normals.rows()));
+  for (Eigen::Index v = 0; v < normals.rows(); ++v) {
+    Eigen::Index axis = 0;
+    normals.row(v).cwiseAbs().maxCoeff(&axis);
+    bins[static_cast<std::size_t>(v)] = 2 * static_cast<int>(axis) + (normals(v, axis) < 0.0 ? 1 : 0);
+  }
+  return bins;
+}
+
+Clustering cluster(const core::Mesh& mesh, const std::vector<int>& bins, int resolution) {
   const Eigen::RowVector3d low = mesh.vertices.colwise().minCoeff();
   const double extent = (mesh.vertices.colwise().maxCoeff() - low).maxCoeff();
   const double cell = extent > 0.0 ? extent / resolution : 1.0;
@@ -25,7 +41,7 @@ Clustering cluster(const core::Mesh& mesh, int resolution) {
   std::unordered_map<std::int64_t, int> cluster_of_cell;
   cluster_of_cell.reserve(static_cast<std::size_t>(mesh.vertices.rows()));
   for (Eigen::Index v = 0; v < mesh.vertices.rows(); ++v) {
-    std::int64_t key = 0;
+    std::int64_t key = bins[static_cast<std::size_t>(v)];
     for (int c = 0; c < 3; ++c)
       key = key * (resolution + 2) +
             std::clamp(static_cast<std::int64_t>((mesh.vertices(v, c) - low[c]) / cell), std::int64_t{0},
@@ -61,17 +77,18 @@ MeshProxy::MeshProxy(const core::Mesh& mesh, int max_triangles) {
   // A surface's proxy has about resolution^2 triangles: one probe estimates the resolution, then steps of
   // 10% find the finest within the budget (two to four clusterings instead of a dozen for a bisection).
   constexpr int kProbe = 32;
-  Clustering best = cluster(mesh, kProbe);
+  const std::vector<int> bins = normal_bins(mesh);
+  Clustering best = cluster(mesh, bins, kProbe);
   const double ratio = static_cast<double>(max_triangles) / std::max<Eigen::Index>(best.faces.rows(), 1);
   int resolution = std::clamp(static_cast<int>(kProbe * std::sqrt(ratio)), 1, 4096);
-  Clustering trial = cluster(mesh, resolution);
+  Clustering trial = cluster(mesh, bins, resolution);
   while (trial.faces.rows() > max_triangles && resolution > 1) {
     resolution = std::min(resolution - 1, static_cast<int>(resolution * 0.9));
-    trial = cluster(mesh, resolution);
+    trial = cluster(mesh, bins, resolution);
   }
   if (trial.faces.rows() <= max_triangles) best = std::move(trial);
   for (int finer = resolution * 11 / 10 + 1; finer <= 4096; finer = finer * 11 / 10 + 1) {
-    Clustering next = cluster(mesh, finer);
+    Clustering next = cluster(mesh, bins, finer);
     if (next.faces.rows() > max_triangles) break;
     best = std::move(next);
   }
