@@ -1,7 +1,5 @@
 #include "partreg/commands/common.hpp"
 
-#include <unistd.h>
-
 #include <algorithm>
 #include <filesystem>
 #include <fstream>
@@ -48,12 +46,6 @@ void write_json_or_stdout(const nlohmann::json& report, const std::string& path)
   std::cerr << "wrote " << path << '\n';
 }
 
-nlohmann::json matrix_json(const Eigen::Matrix4d& matrix) {
-  nlohmann::json rows = nlohmann::json::array();
-  for (int r = 0; r < 4; ++r) rows.push_back({matrix(r, 0), matrix(r, 1), matrix(r, 2), matrix(r, 3)});
-  return rows;
-}
-
 nlohmann::json spaces_json(const core::CategoryModel& model) {
   auto values = [](const Eigen::VectorXd& v) { return std::vector<double>(v.data(), v.data() + v.size()); };
   nlohmann::json spaces = nlohmann::json::array();
@@ -97,30 +89,6 @@ std::pair<int, int> parse_size(const std::string& text, const std::string& optio
   if (!(in >> width >> x >> height) || !in.eof() || (x != 'x' && x != 'X') || width < 1 || height < 1)
     throw UsageError(option + " takes WIDTHxHEIGHT in pixels (like 1280x960), not '" + text + "'");
   return {width, height};
-}
-
-StagedFolder::StagedFolder(const std::filesystem::path& destination) : destination_(destination) {
-  namespace fs = std::filesystem;
-  if (fs::exists(destination) && !(fs::is_directory(destination) && fs::is_empty(destination)))
-    throw UsageError("output folder " + destination.string() + " exists and is not empty");
-  const fs::path parent = destination.has_parent_path() ? destination.parent_path() : fs::path(".");
-  fs::create_directories(parent);
-  staging_ = parent / ("." + destination.filename().string() + ".partial-" + std::to_string(::getpid()));
-  fs::remove_all(staging_);
-  fs::create_directories(staging_);
-}
-
-StagedFolder::~StagedFolder() {
-  if (!committed_) {
-    std::error_code ignored;
-    std::filesystem::remove_all(staging_, ignored);
-  }
-}
-
-void StagedFolder::commit() {
-  if (std::filesystem::exists(destination_)) std::filesystem::remove(destination_);  // empty, checked above
-  std::filesystem::rename(staging_, destination_);
-  committed_ = true;
 }
 
 }  // namespace partreg::app

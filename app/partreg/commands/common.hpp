@@ -11,7 +11,9 @@
 
 #include "partreg/core/category_model.hpp"
 #include "partreg/core/types.hpp"
+#include "partreg/io/atomic_file.hpp"
 #include "partreg/io/dataset.hpp"
+#include "partreg/io/result_file.hpp"
 
 namespace partreg::app {
 
@@ -24,8 +26,7 @@ core::Points read_points_logged(const std::string& path, std::size_t count, std:
 /// Writes `report` (indented) to `path` atomically; to stdout when path is "-"; nowhere when path is empty.
 void write_json_or_stdout(const nlohmann::json& report, const std::string& path);
 
-/// A 4x4 matrix as four JSON rows.
-nlohmann::json matrix_json(const Eigen::Matrix4d& matrix);
+using io::matrix_json;
 
 /// Each space of a model: name, points, dimensions, beta, variances and explained fraction per dimension.
 nlohmann::json spaces_json(const core::CategoryModel& model);
@@ -38,22 +39,6 @@ std::string apply_labels_file(io::Dataset& dataset, const std::string& labels_pa
 /// "1280x960" -> {1280, 960}; UsageError naming `option` for anything else or a side below 1 pixel.
 std::pair<int, int> parse_size(const std::string& text, const std::string& option);
 
-/// An output folder written in full or not at all: files go to a hidden sibling folder that commit() renames
-/// to the destination; without commit() (a failure) the sibling is removed. The destination must not exist
-/// or be empty (UsageError otherwise), so nothing of somebody else's is ever overwritten.
-class StagedFolder {
- public:
-  explicit StagedFolder(const std::filesystem::path& destination);
-  ~StagedFolder();
-  StagedFolder(const StagedFolder&) = delete;
-  StagedFolder& operator=(const StagedFolder&) = delete;
-  /// Where to write the files now.
-  const std::filesystem::path& staging() const { return staging_; }
-  void commit();
-
- private:
-  std::filesystem::path destination_, staging_;
-  bool committed_ = false;
-};
+using io::StagedFolder;
 
 }  // namespace partreg::app

@@ -25,31 +25,6 @@ struct RegisterOptions {
   core::RegistrationSettings settings;
 };
 
-nlohmann::json result_json(const core::RegistrationResult& result, const RegisterOptions& options) {
-  nlohmann::json spaces = nlohmann::json::array();
-  for (const core::SpaceFit& fit : result.fits)
-    spaces.push_back(
-        {{"space", fit.space},
-         {"latent", std::vector<double>(fit.latent.data(), fit.latent.data() + fit.latent.size())},
-         {"T_observed_canonical", matrix_json(fit.T_observed_canonical)},
-         {"scale", fit.scale},
-         {"cost", fit.cost},
-         {"iterations", fit.iterations},
-         {"seconds", fit.seconds}});
-  return {{"model", options.model_path},
-          {"observed", options.observed_path},
-          {"variant", core::to_string(result.variant)},
-          {"direction", options.direction},
-          {"loss", options.loss},
-          {"spaces", spaces},
-          {"fit",
-           {{"mean", result.fit.mean},
-            {"p90", result.fit.p90},
-            {"mean_normalised", result.fit.mean_normalised},
-            {"p90_normalised", result.fit.p90_normalised}}},
-          {"seconds", result.seconds}};
-}
-
 void write_outputs(const core::CategoryModel& model, const core::RegistrationResult& result,
                    const RegisterOptions& options) {
   if (!options.points_out.empty()) {
@@ -109,7 +84,8 @@ void run_register(RegisterOptions& options) {
   std::cerr << core::to_string(result.variant) << ": mean closest-point distance " << result.fit.mean
             << " (data units), " << result.fit.mean_normalised << " of the diagonal; 90th percentile "
             << result.fit.p90 << "; " << result.seconds << " s\n";
-  nlohmann::json report = result_json(result, options);
+  nlohmann::json report =
+      io::result_json(result, {options.model_path, options.observed_path, options.direction, options.loss});
   if (!options.truth_path.empty()) report["truth"] = truth_errors(model, result, options);
   write_outputs(model, result, options);
   write_json_or_stdout(report, options.json_path);

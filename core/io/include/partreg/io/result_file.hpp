@@ -1,0 +1,41 @@
+#pragma once
+/// \file
+/// What a registration found, as files: the result JSON that `partreg register --json` prints and the
+/// app's Save result writes, and a result folder with everything a robot needs from it.
+
+#include <filesystem>
+#include <nlohmann/json.hpp>
+#include <string>
+#include <vector>
+
+#include "partreg/core/category_model.hpp"
+#include "partreg/core/deformation.hpp"
+#include "partreg/core/registration.hpp"
+
+namespace partreg::io {
+
+/// A 4x4 matrix as four rows.
+nlohmann::json matrix_json(const Eigen::Matrix4d& matrix);
+
+/// Where a result came from and with which objective, as written into its JSON.
+struct ResultSource {
+  std::string model_path, observed_path;
+  std::string direction, loss;  ///< the names core::parse_direction and core::parse_loss read
+};
+
+/// The result as JSON: model, observation, variant and objective; per space its latent, pose
+/// (T_observed_canonical), scale, cost, steps and seconds; the closest-point fit (data units and normalised)
+/// and the total time.
+nlohmann::json result_json(const core::RegistrationResult& result, const ResultSource& source);
+
+/// Writes a result folder, all of it or nothing (the folder must not exist or be empty): result.json
+/// (`report`), points.ply (the deformed canonical points with their part), mesh.ply (the deformed canonical
+/// mesh with its parts, when the model has one) and, when `frames` are given, frames.json (them, carried into
+/// the observed frame). Returns the files written.
+std::vector<std::filesystem::path> write_result_folder(const std::filesystem::path& folder,
+                                                       const core::CategoryModel& model,
+                                                       const core::RegistrationResult& result,
+                                                       const nlohmann::json& report,
+                                                       const std::vector<core::Frame>& frames = {});
+
+}  // namespace partreg::io

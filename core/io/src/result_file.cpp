@@ -1,0 +1,74 @@
+#include "partreg/io/result_file.hpp"
+
+#include <fstream>
+
+#include "partreg/core/errors.hpp"
+#include "partreg/io/atomic_file.hpp"
+#include "partreg/io/cloud_io.hpp"
+#include "partreg/io/frames_file.hpp"
+#include "partreg/io/mesh_io.hpp"
+
+namespace partreg::io {
+
+nlohmann::json matrix_json(const Eigen::Matrix4d& matrix) {
+  nlohmann::json rows = nlohmann::json::array();
+  for (int r = 0; r < 4; ++r) rows.push_back({matrix(r, 0), matrix(r, 1), matrix(r, 2), matrix(r, 3)});
+  return rows;
+}
+
+nlohmann::json result_json(const core::RegistrationResult& result, const ResultSource& source) {
+  nlohmann::json spaces = nlohmann::json::array();
+  for (const core::SpaceFit& fit : result.fits)
+    spaces.push_back(
+        {{"space", fit.space},
+         {"latent", std::vector<double>(fit.latent.data(), fit.latent.data() + fit.latent.size())},
+         {"T_observed_canonical", matrix_json(fit.T_observed_canonical)},
+         {"scale", fit.scale},
+         {"cost", fit.cost},
+         {"iterations", fit.iterations},
+         {"seconds", fit.seconds}});
+  return {{"model", source.model_path},
+          {"observed", source.observed_path},
+          {"variant", core::to_string(result.variant)},
+          {"direction", source.direction},
+          {"loss", source.loss},
+          {"spaces", spaces},
+          {"fit",
+           {{"mean", result.fit.mean},
+            {"p90", result.fit.p90},
+            {"mean_normalised", result.fit.mean_normalised},
+            {"p90_normalised", result.fit.p90_normalised}}},
+          {"seconds", result.seconds}};
+}
+
+std::vector<std::filesystem::path> write_result_folder(const std::filesystem::path& folder,
+                                                       const core::CategoryModel& model,
+                                                       const core::RegistrationResult& result,
+                                                       const nlohmann::json& report,
+                                                       const std::vector<core::Frame>& frames) {
+  StagedFolder staged(folder);
+  const std::filesystem::path& out = staged.staging();
+  std::vector<std::string> names = {"result.json", "points.ply"};
+  {
+    std::ofstream json(out / "result.json");
+    json << report.dump(2) << '\n';
+    if (!json) throw InputError("cannot write " + (folder / "result.json").string());
+  }
+  PointAttributes attributes;
+  attributes.integers["part"] = result.part;
+  write_cloud_ply(out / "points.ply", core::Cloud{result.deformed, {}}, attributes);
+  if (model.canonical_mesh.faces.rows() > 0) {
+    write_mesh(out / "mesh.ply", core::deform_mesh(model, result), &model.mesh_vertex_part);
+    names.push_back("mesh.ply");
+  }
+  if (!frames.empty()) {
+    write_frames_file(out / "frames.json", core::transfer_frames(model, result, frames));
+    names.push_back("frames.json");
+  }
+  staged.commit();
+  std::vector<std::filesystem::path> written;
+  for (const std::string& name : names) written.push_back(folder / name);
+  return written;
+}
+
+}  // namespace partreg::io
