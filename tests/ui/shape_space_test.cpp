@@ -119,6 +119,13 @@ TEST(ShapeSpace, ATrainingInstanceIsDrawnExactlyAsFittedBesideTheSlidersShape) {
   const Eigen::VectorXd live = shape_space_mesh(state).vertices * right;
   const Eigen::VectorXd beside = instance_beside(state)->mesh.vertices * right;
   EXPECT_GT(beside.minCoeff(), live.maxCoeff());
+  // Orbiting turns about both shapes (the offset stays); a named view places it beside again.
+  const Eigen::Vector3d placed = instance_beside(state)->offset;
+  execute(state, make_command("orbit", {"60", "0"}));
+  EXPECT_EQ(instance_beside(state)->offset, placed);
+  execute(state, make_command("camera", {"front"}));  // looks along -Z: its horizontal is +X
+  EXPECT_GT(instance_beside(state)->offset.x(), 0.0);
+  EXPECT_LT(instance_beside(state)->offset.cwiseAbs().tail<2>().maxCoeff(), 1e-9);
   execute(state, make_command("show_instance", {"none"}));
   EXPECT_EQ(state.shapes.shown_instance, -1);
   EXPECT_FALSE(instance_beside(state));

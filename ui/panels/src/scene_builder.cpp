@@ -61,7 +61,6 @@ void add_instance_beside(const AppState& state, render::Scene& scene) {
 
 void add_shape_space(AppState& state, render::Scene& scene) {
   const core::CategoryModel& model = *state.shapes.model;
-  add_instance_beside(state, scene);
   core::Mesh mesh = shape_space_mesh(state);
   if (mesh.faces.rows() > 0) {
     render::MeshItem item;
@@ -69,13 +68,15 @@ void add_shape_space(AppState& state, render::Scene& scene) {
     if (model.mesh_vertex_part.size() == item.mesh.vertices.rows())
       item.vertex_colors = render::part_colors(model.mesh_vertex_part);
     scene.meshes.push_back(std::move(item));
-    return;
+  } else {
+    // A model without a mesh: its canonical points, deformed by the holistic space.
+    render::PointSet points;
+    points.positions = model.holistic().deformed(state.shapes.latent(0));
+    points.colors = render::part_colors(model.canonical_part);
+    scene.point_sets.push_back(std::move(points));
   }
-  // A model without a mesh: its canonical points, deformed by the holistic space.
-  render::PointSet points;
-  points.positions = model.holistic().deformed(state.shapes.latent(0));
-  points.colors = render::part_colors(model.canonical_part);
-  scene.point_sets.push_back(std::move(points));
+  // After the sliders' shape, which so keeps its place in the renderer's per-mesh buffers.
+  add_instance_beside(state, scene);
 }
 
 // The canonical's frames (grasps) where the registration carries them: RGB triads sized to the shape. The

@@ -75,10 +75,7 @@ std::optional<InstanceBeside> instance_beside(const AppState& state) {
   InstanceBeside shown;
   shown.name = model.training.instances.at(static_cast<std::size_t>(shapes.shown_instance));
   const core::Points& fitted = shapes.deformation->fitted_instance(shapes.shown_instance);
-  // Beside the sliders' shape along the screen's horizontal, whatever the orbit: 1.2 widths leave a gap.
-  const Eigen::Vector3d right = view_right(state);
-  const Eigen::VectorXd along = sliders_shape(state) * right;
-  shown.offset = 1.2 * (along.maxCoeff() - along.minCoeff()) * right;
+  shown.offset = shapes.instance_offset;
   const core::Points moved = fitted.rowwise() + shown.offset.transpose();
   if (model.canonical_mesh.faces.rows() > 0) {
     shown.mesh.vertices = moved;
@@ -89,11 +86,18 @@ std::optional<InstanceBeside> instance_beside(const AppState& state) {
     shown.part = model.canonical_part;
   }
   const CameraFrame frame = camera_frame(state.view, state.viewport);
-  const Eigen::Vector3d up = (frame.eye - frame.target).cross(right).normalized();
+  const Eigen::Vector3d up = (frame.eye - frame.target).cross(view_right(state)).normalized();
   const Eigen::VectorXd height = moved * up;
   const Eigen::Vector3d centre = moved.colwise().mean().transpose();
   shown.label_anchor = centre + (height.maxCoeff() - centre.dot(up)) * up;
   return shown;
+}
+
+void place_instance_beside(AppState& state) {
+  if (!state.shapes.loaded()) return;
+  const Eigen::Vector3d right = view_right(state);
+  const Eigen::VectorXd along = sliders_shape(state) * right;
+  state.shapes.instance_offset = 1.2 * (along.maxCoeff() - along.minCoeff()) * right;
 }
 
 core::Points registration_points(const AppState& state, Eigen::VectorXi* part) {

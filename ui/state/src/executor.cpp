@@ -46,9 +46,9 @@ void fit_view(AppState& state, const std::string& name = "iso") {
   Eigen::Vector3d low, high;
   mode_bounds(state, low, high);
   state.view = named_view(name, low, high, state.viewport);
-  // A shown training instance sits along the view's horizontal, so its place depends on the orientation
-  // just chosen: measure again.
+  // A shown training instance goes beside the shape along the new view's horizontal: place it, measure again.
   if (state.shapes.shown_instance < 0) return;
+  place_instance_beside(state);
   mode_bounds(state, low, high);
   state.view = named_view(name, low, high, state.viewport);
 }
@@ -238,6 +238,7 @@ Outcome show_instance(AppState& state, const Command& command) {
   const int index = which == "none" ? -1 : instance_index(state, which);
   state.shapes.shown_instance = index;
   state.mode = Mode::shape_space;
+  place_instance_beside(state);
   refit_keeping_orientation(state);
   if (index < 0) return message("no training instance shown");
   return message("showing training instance " + state.shapes.model->training.instances[index] +
