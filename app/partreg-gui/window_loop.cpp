@@ -7,6 +7,7 @@
 #include <iostream>
 #include <optional>
 
+#include "background_jobs.hpp"
 #include "gui_app.hpp"
 #include "partreg/core/errors.hpp"
 #include "partreg/ui/executor.hpp"
@@ -172,50 +173,6 @@ class FramePacer {
 
 }  // namespace
 
-// A registration asked for from the panels runs on its own thread so the window keeps drawing; its result
-// enters the state when it is ready. Scripts stay synchronous, so replays are deterministic.
-class BackgroundRegistration {
- public:
-  void start(ui::AppState& state, const ui::Command& command) {
-    if (running_.valid()) {
-      report(state, "a registration is already running", true);
-      return;
-    }
-    try {
-      job_ = ui::prepare_registration(state, command);
-    } catch (const std::exception& e) {
-      report(state, e.what(), true);
-      return;
-    }
-    running_ = std::async(std::launch::async, [job = *job_] { return job.run(); });
-    report(state, "registering (" + core::to_string(job_->settings.variant) + ")...", false);
-  }
-
-  bool running() const { return running_.valid(); }
-
-  void collect(ui::AppState& state) {
-    if (!running_.valid() || running_.wait_for(std::chrono::seconds(0)) != std::future_status::ready) return;
-    try {
-      core::RegistrationResult result = running_.get();
-      if (state.shapes.model != job_->model) {  // another model was loaded meanwhile: the result is stale
-        report(state, "registration finished for a model no longer loaded: discarded", true);
-        return;
-      }
-      report(state, ui::apply_registration(state, *job_, std::move(result)).message, false);
-    } catch (const std::exception& e) {
-      report(state, std::string("registration failed: ") + e.what(), true);
-    }
-  }
-
- private:
-  static void report(ui::AppState& state, const std::string& text, bool error) {
-    state.status = text;
-    state.status_is_error = error;
-  }
-  std::optional<ui::RegistrationJob> job_;
-  std::future<core::RegistrationResult> running_;
-};
-
 int run_window(const GuiOptions& options, ui::AppState& state, const std::vector<ui::Command>& script) {
   render::GlfwContext context(options.width, options.height, "partreg-gui");
   GLFWwindow* window = context.window();
@@ -225,12 +182,14 @@ int run_window(const GuiOptions& options, ui::AppState& state, const std::vector
   install_callbacks(window, input);
   ViewportMouse mouse;
   BackgroundRegistration registration;
+  BackgroundTraining training;
   std::size_t next = 0;  // the script runs one command per frame, after its tab has been drawn
   int settle = 0;
   FramePacer pacer;
   auto last = std::chrono::steady_clock::now();
   while (!state.quit_requested) {
-    const bool busy = registration.running() || next < script.size() || frame.animating();
+    const bool busy =
+        registration.running() || training.running() || next < script.size() || frame.animating();
     if (!pacer.wait(input, busy) && !glfwWindowShouldClose(window)) continue;
     if (glfwWindowShouldClose(window)) {
       if (!state.labelling.dirty || frame.panel_state().confirmed_quit) break;
@@ -258,10 +217,13 @@ int run_window(const GuiOptions& options, ui::AppState& state, const std::vector
     for (const ui::Command& command : commands) {
       if (command.verb == "register")
         registration.start(state, command);
+      else if (command.verb == "train")
+        training.start(state, command);
       else
         ui::execute_reporting(state, command);
     }
     registration.collect(state);
+    training.collect(state);
     if (frame.panel_state().confirmed_quit) break;
     if (next < script.size() && ++settle >= kSettleFrames) {
       settle = 0;

@@ -5,8 +5,9 @@
 #include <cstdio>
 #include <fstream>
 
-#include "support/shared_data.hpp"
+#include "partreg/io/model_file.hpp"
 #include "support/run_partreg.hpp"
+#include "support/shared_data.hpp"
 #include "support/temp_dir.hpp"
 
 namespace partreg {
@@ -143,7 +144,9 @@ TEST_F(Cli, RegisterWritesItsOutputsAndRefusesBadInput) {
       "position": [0, 0, 0], "rotation": [[1, 0.5, 0], [0, 1, 0], [0, 0, 1]]}]})");
   std::ifstream model_in(dir / "mug.prm", std::ios::binary);
   std::string model{std::istreambuf_iterator<char>(model_in), {}};
-  model.replace(model.find("\"format_version\":1"), 18, "\"format_version\":2");
+  const std::string version = "\"format_version\":" + std::to_string(io::kModelFormatVersion);
+  model.replace(model.find(version), version.size(),
+                "\"format_version\":" + std::to_string(io::kModelFormatVersion + 1));  // same length
   std::ofstream(dir / "v2.prm", std::ios::binary) << model;
   const std::string out = " --points-out " + path("out.ply");
   const std::vector<std::pair<std::string, int>> cases = {

@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include "partreg/core/errors.hpp"
+#include "partreg/core/gaussian_kernel.hpp"
 #include "partreg/core/kdtree.hpp"
 #include "partreg/core/synthetic.hpp"
 
@@ -79,6 +80,54 @@ TEST(Training, AHeldOutMugIsReconstructedBetterByTheSpaceThanByTheMean) {
   const double by_mean =
       (space.deformed(Eigen::VectorXd::Zero(space.dimensions())) - result.moved).rowwise().norm().mean();
   EXPECT_LT(by_space, 0.8 * by_mean) << "space " << by_space << " mean " << by_mean;
+}
+
+TEST(Training, KeepsEachInstancesFieldAndLatentsAndReportsMonotoneProgressToTheEnd) {
+  std::vector<TrainingInstance> instances;
+  for (const auto& synthetic : make_synthetic_category(SyntheticCategory::mug, 4, 6))
+    instances.push_back(instance_of(synthetic, 500));
+  TrainingSettings settings;
+  settings.canonical_points = 150;
+  settings.target_points = 300;
+  settings.latent_dimensions = 3;  // = K - 1: each instance's displacement lies inside the space
+  std::vector<TrainingProgress> steps;
+  std::vector<std::string> lines;
+  const CategoryModel model = train_category("mugs", instances, {"body", "handle"}, settings, nullptr,
+                                             [&](const TrainingProgress& step) { steps.push_back(step); });
+  train_category("mugs", instances, {"body", "handle"}, settings, nullptr,
+                 [&](const std::string& line) { lines.push_back(line); });
+
+  // K (1 + P) steps for 4 instances and 2 parts, counted up by one, ending at 1; the line callback gets the
+  // same lines.
+  ASSERT_EQ(steps.size(), 12u);
+  for (std::size_t i = 0; i < steps.size(); ++i) {
+    EXPECT_EQ(steps[i].total, 12);
+    EXPECT_EQ(steps[i].done, static_cast<int>(i) + 1);
+    if (i > 0) EXPECT_GT(steps[i].fraction(), steps[i - 1].fraction());
+  }
+  EXPECT_EQ(steps.back().fraction(), 1.0);
+  ASSERT_EQ(lines.size(), steps.size());
+  EXPECT_EQ(lines.front().rfind("cpd holistic", 0), 0u) << lines.front();
+
+  // The holistic field of each instance is kept; its latent is the projection of its displacement G W_i.
+  ASSERT_EQ(model.training_weights.rows(), 4);
+  ASSERT_EQ(model.training_weights.cols(), 3 * model.canonical.rows());
+  const ShapeSpace& space = model.holistic();
+  ASSERT_EQ(space.training_latents.rows(), 4);
+  ASSERT_EQ(space.training_latents.cols(), 3);
+  for (int i = 0; i < 4; ++i) {
+    const Points weights = model.training_weight_field(i);
+    const Points displacement = apply_kernel(space.canonical, space.canonical, weights, space.beta);
+    const Eigen::VectorXd latent = space.project_displacement(displacement);
+    EXPECT_LT((latent.transpose() - space.training_latents.row(i)).norm(), 1e-9 * (1.0 + latent.norm()));
+    // With q = K - 1 the space holds every training shape: its latent rebuilds the fit.
+    EXPECT_LT((space.deformed(latent) - (space.canonical + displacement)).cwiseAbs().maxCoeff(), 1e-8);
+    if (instances[static_cast<std::size_t>(i)].name == model.training.canonical)
+      EXPECT_EQ(weights.cwiseAbs().maxCoeff(), 0.0);
+  }
+  // The instances lie apart: a mix-up of rows would fail the checks above.
+  EXPECT_GT((space.training_latents.row(1) - space.training_latents.row(2)).norm(), 1e-3);
+  for (const ShapeSpace& part : model.spaces) EXPECT_EQ(part.training_latents.rows(), 4);
 }
 
 TEST(Training, RefusesTooFewInstancesAndBadLabels) {

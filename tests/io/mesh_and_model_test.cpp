@@ -88,8 +88,11 @@ TEST(ModelFile, SavesAndLoadsBitForBit) {
     EXPECT_EQ(read.spaces[s].kernel_basis, model.spaces[s].kernel_basis);
     EXPECT_EQ(read.spaces[s].variances, model.spaces[s].variances);
     EXPECT_EQ(read.spaces[s].canonical, model.spaces[s].canonical);
+    EXPECT_EQ(read.spaces[s].training_latents, model.spaces[s].training_latents);
   }
   EXPECT_EQ(read.training.instances, model.training.instances);
+  EXPECT_EQ(read.training_weights, model.training_weights);
+  EXPECT_EQ(read.training_weights.rows(), 4);
   // Writing what was read gives the same bytes.
   write_model(dir / "again.prm", read);
   std::ifstream a(dir / "m.prm", std::ios::binary), b(dir / "again.prm", std::ios::binary);
@@ -120,14 +123,20 @@ TEST(ModelFile, RefusesOtherVersionsTruncationCorruptionAndOtherFiles) {
   corrupted[corrupted.size() - 50] ^= 0x5a;
   std::ofstream(dir / "corrupted.prm", std::ios::binary) << corrupted;
   std::string other_version = bytes;
-  const auto at = other_version.find("\"format_version\":1");
+  const std::string version = "\"format_version\":" + std::to_string(kModelFormatVersion);
+  const auto at = other_version.find(version);
   ASSERT_NE(at, std::string::npos);
-  other_version[at + 17] = '7';
+  other_version.replace(at, version.size(), "\"format_version\":7");
   std::ofstream(dir / "version.prm", std::ios::binary) << other_version;
   std::ofstream(dir / "text.prm") << "hello\n";
   expect_refused(dir / "truncated.prm", "truncated");
   expect_refused(dir / "corrupted.prm", "corrupted");
   expect_refused(dir / "version.prm", "format version 7");
+  // A version 1 file (before the training instances were kept) gets the same clear refusal.
+  std::string version_1 = bytes;
+  version_1.replace(at, version.size(), "\"format_version\":1");
+  std::ofstream(dir / "version_1.prm", std::ios::binary) << version_1;
+  expect_refused(dir / "version_1.prm", "format version 1");
   expect_refused(dir / "text.prm", "not a partreg model");
   expect_refused(dir / "missing.prm", "missing.prm");
 }

@@ -1,5 +1,6 @@
 #include <gtest/gtest.h>
 
+#include "partreg/core/errors.hpp"
 #include "partreg/core/gaussian_kernel.hpp"
 #include "partreg/io/model_file.hpp"
 #include "partreg/ui/executor.hpp"
@@ -69,6 +70,106 @@ TEST(ShapeSpace, AnAnimatedSliderSweepsTwoStandardDeviationsEveryFourSeconds) {
   advance_animation(state, 1.0);
   EXPECT_NEAR(state.shapes.std_devs[static_cast<std::size_t>(handle)][1], -2.0, 1e-12);
   EXPECT_FALSE(execute_reporting(state, make_command("animate", {"handle", "9"})));
+}
+
+// The UsageError message of a command that must fail (empty when it succeeds).
+std::string refusal(AppState& state, const Command& command) {
+  try {
+    execute(state, command);
+  } catch (const UsageError& error) {
+    return error.what();
+  }
+  return "";
+}
+
+TEST(ShapeSpace, ATrainingInstanceIsDrawnExactlyAsFittedBesideTheSlidersShape) {
+  AppState state;
+  execute(state, make_command("load", {testing::small_model_path().string()}));
+  const core::CategoryModel& model = *state.shapes.model;
+  ASSERT_EQ(model.training.instances.size(), 5u);
+  EXPECT_FALSE(instance_beside(state));
+  const std::string name = model.training.instances[2];
+  execute(state, make_command("show_instance", {name}));
+  EXPECT_EQ(state.shapes.shown_instance, 2);
+  const std::optional<InstanceBeside> shown = instance_beside(state);
+  ASSERT_TRUE(shown);
+  EXPECT_EQ(shown->name, name);
+  // Its holistic fit V + G(V, C) W_2, moved by the offset only.
+  const core::ShapeSpace& holistic = model.holistic();
+  const core::Points& vertices = model.canonical_mesh.vertices;
+  const core::Points fit =
+      vertices + core::Points(core::apply_kernel(vertices, holistic.canonical, model.training_weight_field(2),
+                                                 holistic.beta));
+  ASSERT_EQ(shown->mesh.vertices.rows(), vertices.rows());
+  EXPECT_LT(((shown->mesh.vertices.rowwise() - shown->offset.transpose()) - fit).cwiseAbs().maxCoeff(),
+            1e-12);
+  // Another instance's fit differs by far more than that tolerance.
+  execute(state, make_command("show_instance", {"4"}));  // by index, from 1
+  EXPECT_EQ(state.shapes.shown_instance, 3);
+  EXPECT_GT(
+      ((instance_beside(state)->mesh.vertices.rowwise() - instance_beside(state)->offset.transpose()) - fit)
+          .cwiseAbs()
+          .maxCoeff(),
+      1e-3);
+  // Beside, along the screen's horizontal: the two shapes' extents along it do not overlap.
+  const CameraFrame frame = camera_frame(state.view, state.viewport);
+  const Eigen::Vector3d right = frame.up.cross(frame.eye - frame.target).normalized();
+  EXPECT_LT(shown->offset.cross(right).norm(), 1e-9 * shown->offset.norm());
+  EXPECT_GT(shown->offset.dot(right), 0.0);
+  const Eigen::VectorXd live = shape_space_mesh(state).vertices * right;
+  const Eigen::VectorXd beside = instance_beside(state)->mesh.vertices * right;
+  EXPECT_GT(beside.minCoeff(), live.maxCoeff());
+  // Orbiting turns about both shapes (the offset stays); a named view places it beside again.
+  const Eigen::Vector3d placed = instance_beside(state)->offset;
+  execute(state, make_command("orbit", {"60", "0"}));
+  EXPECT_EQ(instance_beside(state)->offset, placed);
+  execute(state, make_command("camera", {"front"}));  // looks along -Z: its horizontal is +X
+  EXPECT_GT(instance_beside(state)->offset.x(), 0.0);
+  EXPECT_LT(instance_beside(state)->offset.cwiseAbs().tail<2>().maxCoeff(), 1e-9);
+  execute(state, make_command("show_instance", {"none"}));
+  EXPECT_EQ(state.shapes.shown_instance, -1);
+  EXPECT_FALSE(instance_beside(state));
+}
+
+TEST(ShapeSpace, BadInstanceNamesAreRefusedWithTheNamesListed) {
+  AppState state;
+  EXPECT_NE(refusal(state, make_command("show_instance", {"mug_000"})).find("no model"), std::string::npos);
+  execute(state, make_command("load", {testing::small_model_path().string()}));
+  for (const std::string bad : {"teapot", "0", "6", "2.5"}) {
+    for (const char* verb : {"show_instance", "instance_latent"}) {
+      const std::string message = refusal(state, make_command(verb, {bad}));
+      EXPECT_NE(message.find("'" + bad + "'"), std::string::npos) << message;
+      for (const std::string& name : state.shapes.model->training.instances)
+        EXPECT_NE(message.find(name), std::string::npos) << message;
+    }
+  }
+  EXPECT_EQ(state.shapes.shown_instance, -1);
+  EXPECT_NE(refusal(state, make_command("instance_latent", {"1"}, {{"space", "lid"}})).find("handle"),
+            std::string::npos);
+}
+
+TEST(ShapeSpace, TheSlidersGoToATrainingInstancesLatent) {
+  AppState state;
+  execute(state, make_command("load", {testing::small_model_path().string()}));
+  const core::CategoryModel& model = *state.shapes.model;
+  const std::string name = model.training.instances[1];
+  execute(state, make_command("instance_latent", {name}));  // the current space: holistic
+  EXPECT_LT((state.shapes.latent(0).transpose() - model.holistic().training_latents.row(1)).norm(), 1e-12);
+  execute(state, make_command("animate", {"handle", "1"}));
+  execute(state, make_command("instance_latent", {"4"}, {{"space", "handle"}}));
+  const int handle = state.shapes.space;
+  ASSERT_EQ(model.spaces[static_cast<std::size_t>(handle)].name, "handle");
+  const Eigen::MatrixXd& latents = model.spaces[static_cast<std::size_t>(handle)].training_latents;
+  EXPECT_LT((state.shapes.latent(handle).transpose() - latents.row(3)).norm(), 1e-12);
+  EXPECT_EQ(state.shapes.animated_space, -1);  // the sweep would move the slider off the instance at once
+  // The instances lie apart in the space, so taking another row would fail the checks above.
+  EXPECT_GT((latents.row(3) - latents.row(1)).norm(), 1e-3);
+  EXPECT_GT((model.holistic().training_latents.row(1) - model.holistic().training_latents.row(2)).norm(),
+            1e-3);
+  // Standard deviations: the sliders hold latent / sqrt(variance).
+  const Eigen::VectorXd& values = state.shapes.std_devs[static_cast<std::size_t>(handle)];
+  EXPECT_NEAR(values[0] * std::sqrt(model.spaces[static_cast<std::size_t>(handle)].variances[0]),
+              latents(3, 0), 1e-12);
 }
 
 }  // namespace

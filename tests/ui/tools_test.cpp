@@ -1,6 +1,7 @@
 // The evaluation and training tools of the app: partial view, perturbation, training with the edited labels.
 #include <gtest/gtest.h>
 
+#include "partreg/core/errors.hpp"
 #include "partreg/core/kdtree.hpp"
 #include "partreg/core/normalization.hpp"
 #include "partreg/io/labels_file.hpp"
@@ -55,13 +56,9 @@ TEST(Tools, ARotationMovesTheObservationAndItsViewpointTogether) {
 
 TEST(Tools, TrainingUsesTheLabelledMeshAsTheCanonical) {
   // A dataset of four synthetic mugs (one mesh file each); mug 0 is labelled body/handle in the app.
-  const std::filesystem::path folder = testing::ui_fixture_folder() / "train_dataset";
-  std::filesystem::remove_all(folder);
-  std::filesystem::create_directories(folder);
+  const std::filesystem::path folder = testing::mug_dataset("train_dataset", 4);
   Eigen::VectorXi merged_part;
   const core::Mesh merged = testing::merged_mug(0, &merged_part);
-  for (int i = 0; i < 4; ++i)
-    io::write_mesh(folder / ("mug_" + std::to_string(i) + ".obj"), testing::merged_mug(i));
   // Reading drops degenerate faces: label the faces as read, each by the part of the nearest original face.
   const core::Mesh read = io::read_mesh(folder / "mug_0.obj");
   auto centroids = [](const core::Mesh& mesh) {
@@ -97,6 +94,28 @@ TEST(Tools, TrainingUsesTheLabelledMeshAsTheCanonical) {
   run(state, "load " + (folder / "mug_0.obj").string());
   EXPECT_FALSE(execute_reporting(state, make_command("train", {folder.string()}, {{"out", model + ".2"}})));
   EXPECT_FALSE(std::filesystem::exists(model + ".2"));
+}
+
+TEST(Tools, ATrainingJobReportsMonotoneProgressToTheEndAndItsModelLoads) {
+  const std::filesystem::path folder = testing::mug_dataset("job_dataset", 3);
+  const std::string model = (testing::ui_fixture_folder() / "job.prm").string();
+  std::filesystem::remove(model);
+  AppState state;
+  const TrainingJob job = prepare_training(state, make_command("train", {folder.string()}, {{"out", model}}));
+  std::vector<core::TrainingProgress> steps;
+  const std::string summary = job.run([&](const core::TrainingProgress& step) { steps.push_back(step); });
+  // First "reading" at 0, then K (1 + P) = 3 steps for 3 mugs without parts, each further than the last.
+  ASSERT_EQ(steps.size(), 4u);
+  EXPECT_EQ(steps.front().fraction(), 0.0);
+  for (std::size_t i = 1; i < steps.size(); ++i) EXPECT_GT(steps[i].fraction(), steps[i - 1].fraction());
+  EXPECT_EQ(steps.back().fraction(), 1.0);
+  EXPECT_FALSE(state.shapes.loaded());  // running the job touched no state
+  ASSERT_TRUE(std::filesystem::exists(model));
+  EXPECT_EQ(apply_training(state, job, summary).message, summary);
+  ASSERT_TRUE(state.shapes.loaded());
+  EXPECT_EQ(state.shapes.model->training.instances.size(), 3u);
+  // A folder that does not exist is refused before any work.
+  EXPECT_THROW(prepare_training(state, make_command("train", {(folder / "nowhere").string()})), InputError);
 }
 
 }  // namespace

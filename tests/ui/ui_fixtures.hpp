@@ -15,8 +15,10 @@
 
 namespace partreg::testing {
 
+/// The folder is per model format version: a model cached by a build of another version would be refused.
 inline std::filesystem::path ui_fixture_folder() {
-  const std::filesystem::path folder = std::filesystem::temp_directory_path() / "partreg_ui_fixtures";
+  const std::filesystem::path folder = std::filesystem::temp_directory_path() /
+                                       ("partreg_ui_fixtures_v" + std::to_string(io::kModelFormatVersion));
   std::filesystem::create_directories(folder);
   return folder;
 }
@@ -51,6 +53,17 @@ inline std::filesystem::path mug_mesh_path() {
   const std::filesystem::path path = ui_fixture_folder() / "mug.obj";
   if (!std::filesystem::exists(path)) io::write_mesh(path, merged_mug(0));
   return path;
+}
+
+/// A dataset folder `name` of `count` synthetic mug meshes mug_0.obj, mug_1.obj, ... (no parts), written
+/// afresh.
+inline std::filesystem::path mug_dataset(const std::string& name, int count) {
+  const std::filesystem::path folder = ui_fixture_folder() / name;
+  std::filesystem::remove_all(folder);
+  std::filesystem::create_directories(folder);
+  for (int i = 0; i < count; ++i)
+    io::write_mesh(folder / ("mug_" + std::to_string(i) + ".obj"), merged_mug(i));
+  return folder;
 }
 
 /// observed.ply: a surface sample of synthetic mug 5 (not in the model's training set).

@@ -13,6 +13,13 @@ const ShapeSpace& CategoryModel::space(const std::string& name) const {
   throw UsageError("category '" + category + "' has no space '" + name + "' (it has: " + known + ")");
 }
 
+Points CategoryModel::training_weight_field(int instance) const {
+  if (instance < 0 || instance >= training_weights.rows())
+    throw UsageError("model '" + category + "' has no training instance " + std::to_string(instance));
+  const Eigen::VectorXd row = training_weights.row(instance).transpose();
+  return Eigen::Map<const Points>(row.data(), row.size() / 3, 3);
+}
+
 std::vector<int> CategoryModel::part_rows(int part_index) const {
   std::vector<int> rows;
   for (Eigen::Index i = 0; i < canonical_part.size(); ++i)
@@ -38,6 +45,10 @@ void CategoryModel::validate() const {
   if (spaces.empty() || spaces.front().name != "holistic") fail("the first space must be the holistic one");
   if (spaces.size() != static_cast<std::size_t>(parts) + 1)
     fail("there must be one space per part plus holistic");
+  const auto instances = static_cast<Eigen::Index>(training.instances.size());
+  if (training_weights.rows() != instances || training_weights.cols() != 3 * m)
+    fail("the training weight fields do not match the instances and canonical points");
+  if (!training_weights.allFinite()) fail("the training weight fields are not finite");
   for (const ShapeSpace& space : spaces) {
     const Eigen::Index rows = space.canonical.rows();
     const Eigen::Index q = space.basis.cols();
@@ -49,6 +60,8 @@ void CategoryModel::validate() const {
         space.kernel_mean.size() != 3 * rows || space.kernel_basis.rows() != 3 * rows ||
         space.kernel_basis.cols() != q || space.variances.size() != q)
       fail("space " + space.name + ": array sizes do not agree");
+    if (space.training_latents.rows() != instances || space.training_latents.cols() != q)
+      fail("space " + space.name + ": training latents do not match the instances and dimensions");
     if (!(space.beta > 0.0)) fail("space " + space.name + ": beta must be positive");
   }
 }

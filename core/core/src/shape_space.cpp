@@ -117,6 +117,8 @@ ShapeSpace learn_shape_space(const std::string& name, const std::vector<int>& po
   const Eigen::MatrixXd combination =
       centred.completeOrthogonalDecomposition().solve(space.kernel_basis);  // K x q: D_c a = basis column
   space.basis = centred_fields * combination;
+  // Kept so the app can show where each training instance lies in the space (and set the sliders there).
+  space.training_latents = (space.kernel_basis.transpose() * centred).transpose();
   return space;
 }
 

@@ -45,6 +45,22 @@ void check_instances(const std::vector<TrainingInstance>& instances,
   }
 }
 
+// Counts the steps of training and tells the caller after each one.
+class StepCounter {
+ public:
+  StepCounter(int total, const TrainingProgressCallback& callback) : total_(total), callback_(callback) {}
+  bool wanted() const { return static_cast<bool>(callback_); }
+  void step(const std::string& line) {
+    ++done_;
+    if (callback_) callback_(TrainingProgress{done_, total_, line});
+  }
+
+ private:
+  int done_ = 0;
+  int total_ = 0;
+  const TrainingProgressCallback& callback_;
+};
+
 struct CpdRun {
   Points weights;
   Points moved;
@@ -52,7 +68,7 @@ struct CpdRun {
 
 CpdRun register_onto(const Points& canonical, const Points& target, const TrainingSettings& settings,
                      const std::string& instance, const std::string& space, TrainingReport& report,
-                     const ProgressCallback& progress) {
+                     StepCounter& progress) {
   NonrigidCpdSettings cpd;
   cpd.beta = settings.beta;
   cpd.lambda = settings.lambda;
@@ -62,12 +78,11 @@ CpdRun register_onto(const Points& canonical, const Points& target, const Traini
   const NonrigidCpdResult result = register_nonrigid(canonical, target, cpd);
   TrainingReport::Registration entry{instance, space, result.iterations, result.seconds,
                                      mean_nearest_distance(result.moved, target)};
-  if (progress) {
-    std::ostringstream line;
+  std::ostringstream line;
+  if (progress.wanted())
     line << "cpd " << space << " -> " << instance << ": " << result.iterations << " iterations, "
          << result.seconds << " s, mean fit " << entry.mean_fit << " (normalised)";
-    progress(line.str());
-  }
+  progress.step(line.str());
   report.registrations.push_back(entry);
   return {result.weights, result.moved};
 }
@@ -173,6 +188,28 @@ void set_canonical(CategoryModel& model, const TrainingInstance& canonical,
           : propagate_labels(model.canonical, model.canonical_part, model.canonical_mesh.vertices);
 }
 
+ShapeSpace learn_space(const std::string& name, const std::vector<int>& rows, const Points& canonical,
+                       const TrainingSettings& settings, const std::vector<Points>& weights,
+                       StepCounter& progress) {
+  PcaEmSettings pca;
+  pca.dimensions = settings.latent_dimensions;
+  pca.seed = settings.seed;
+  ShapeSpace space = learn_shape_space(name, rows, canonical, settings.beta, weights, pca);
+  std::ostringstream line;
+  line << "space " << name << ": " << space.dimensions() << " dimensions explain "
+       << 100.0 * space.explained_fraction().sum() << "% of the training variance";
+  progress.step(line.str());
+  return space;
+}
+
+Eigen::MatrixXd stack_rows(const std::vector<Points>& fields) {
+  Eigen::MatrixXd stacked(static_cast<Eigen::Index>(fields.size()), fields.empty() ? 0 : fields[0].size());
+  for (std::size_t i = 0; i < fields.size(); ++i)
+    stacked.row(static_cast<Eigen::Index>(i)) =
+        Eigen::Map<const Eigen::RowVectorXd>(fields[i].data(), fields[i].size());
+  return stacked;
+}
+
 Points rows_of_part(const Target& target, int part) {
   std::vector<int> rows;
   for (Eigen::Index i = 0; i < target.part.size(); ++i)
@@ -185,6 +222,14 @@ Points rows_of_part(const Target& target, int part) {
 CategoryModel train_category(const std::string& category, const std::vector<TrainingInstance>& instances,
                              const std::vector<std::string>& part_names, const TrainingSettings& settings,
                              TrainingReport* report, const ProgressCallback& progress) {
+  TrainingProgressCallback steps;
+  if (progress) steps = [&progress](const TrainingProgress& step) { progress(step.line); };
+  return train_category(category, instances, part_names, settings, report, steps);
+}
+
+CategoryModel train_category(const std::string& category, const std::vector<TrainingInstance>& instances,
+                             const std::vector<std::string>& part_names, const TrainingSettings& settings,
+                             TrainingReport* report, const TrainingProgressCallback& steps) {
   const auto start = std::chrono::steady_clock::now();
   check_instances(instances, part_names);
   TrainingReport local_report;
@@ -194,6 +239,8 @@ CategoryModel train_category(const std::string& category, const std::vector<Trai
   if (!part_names.empty() && canonical.part.size() == 0)
     throw InputError("the canonical instance '" + canonical.name + "' has no part labels");
 
+  const int spaces = 1 + static_cast<int>(part_names.size());
+  StepCounter progress(static_cast<int>(instances.size()) * spaces, steps);
   CategoryModel model;
   model.category = category;
   model.part_names = part_names;
@@ -221,13 +268,11 @@ CategoryModel train_category(const std::string& category, const std::vector<Trai
     }
     targets.push_back(std::move(target));
   }
-  PcaEmSettings pca;
-  pca.dimensions = settings.latent_dimensions;
-  pca.seed = settings.seed;
   std::vector<int> all_rows(static_cast<std::size_t>(m));
   for (Eigen::Index i = 0; i < m; ++i) all_rows[static_cast<std::size_t>(i)] = static_cast<int>(i);
   model.spaces.push_back(
-      learn_shape_space("holistic", all_rows, model.canonical, settings.beta, holistic_weights, pca));
+      learn_space("holistic", all_rows, model.canonical, settings, holistic_weights, progress));
+  model.training_weights = stack_rows(holistic_weights);
 
   // One space per part: the canonical part onto the same part of every instance.
   for (int part = 0; part < static_cast<int>(part_names.size()); ++part) {
@@ -251,7 +296,7 @@ CategoryModel train_category(const std::string& category, const std::vector<Trai
               .weights);
     }
     model.spaces.push_back(
-        learn_shape_space(part_names[part], rows, canonical_part, settings.beta, part_weights, pca));
+        learn_space(part_names[part], rows, canonical_part, settings, part_weights, progress));
   }
 
   TrainingRecord& record = model.training;

@@ -77,6 +77,7 @@ void write_model(const std::filesystem::path& path, const core::CategoryModel& m
   arrays.add("mesh_vertices", model.canonical_mesh.vertices);
   arrays.add("mesh_faces", model.canonical_mesh.faces);
   arrays.add("mesh_vertex_part", model.mesh_vertex_part);
+  arrays.add("training_weights", model.training_weights);
   nlohmann::json spaces = nlohmann::json::array();
   for (const core::ShapeSpace& space : model.spaces) {
     const std::string prefix = "space." + space.name + ".";
@@ -87,6 +88,7 @@ void write_model(const std::filesystem::path& path, const core::CategoryModel& m
     arrays.add(prefix + "variances", space.variances);
     arrays.add(prefix + "kernel_mean", space.kernel_mean);
     arrays.add(prefix + "kernel_basis", space.kernel_basis);
+    arrays.add(prefix + "training_latents", space.training_latents);
     spaces.push_back({{"name", space.name}, {"beta", space.beta}, {"total_variance", space.total_variance}});
   }
   const nlohmann::json header = {
@@ -208,6 +210,7 @@ core::CategoryModel model_from(const nlohmann::json& header, const ArrayReader& 
   model.canonical_mesh.vertices = arrays.get<core::Points>("mesh_vertices");
   model.canonical_mesh.faces = arrays.get<core::Faces>("mesh_faces");
   model.mesh_vertex_part = arrays.get<Eigen::VectorXi>("mesh_vertex_part");
+  model.training_weights = arrays.get<Eigen::MatrixXd>("training_weights");
   for (const auto& entry : header.at("spaces")) {
     core::ShapeSpace space;
     space.name = entry.at("name").get<std::string>();
@@ -221,6 +224,7 @@ core::CategoryModel model_from(const nlohmann::json& header, const ArrayReader& 
     space.variances = arrays.get<Eigen::VectorXd>(prefix + "variances");
     space.kernel_mean = arrays.get<Eigen::VectorXd>(prefix + "kernel_mean");
     space.kernel_basis = arrays.get<Eigen::MatrixXd>(prefix + "kernel_basis");
+    space.training_latents = arrays.get<Eigen::MatrixXd>(prefix + "training_latents");
     model.spaces.push_back(std::move(space));
   }
   for (core::ShapeSpace& space : model.spaces) {

@@ -3,8 +3,10 @@
 #include <imgui.h>
 
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <optional>
 
 #include "partreg/ui/labelling.hpp"
 
@@ -103,6 +105,55 @@ void labelling_panel(const AppState& state, PanelState& panel, std::vector<Comma
   ImGui::SameLine();
   if (ImGui::Button("Train"))
     out.push_back(make_command("train", {panel.dataset_path}, {{"out", panel.model_out}}));
+  if (state.training.running) {
+    ImGui::ProgressBar(static_cast<float>(state.training.fraction), ImVec2(-1.0f, 0.0f));
+    ImGui::TextWrapped("%s", state.training.line.c_str());
+  }
+}
+
+// Where each training instance lies on the slider just drawn: a short mark under the frame, the shown
+// instance's darker. `frame_width` is the slider's frame (without its label); sliders span -3..+3 sd.
+void slider_ticks(const ShapeDocument& shapes, const core::ShapeSpace& space, int k, float frame_width) {
+  const double sd = std::sqrt(space.variances[k]);
+  if (!(sd > 0.0)) return;
+  const ImVec2 low = ImGui::GetItemRectMin(), high = ImGui::GetItemRectMax();
+  ImDrawList* draw = ImGui::GetWindowDrawList();
+  for (Eigen::Index i = 0; i < space.training_latents.rows(); ++i) {
+    const double value = std::clamp(space.training_latents(i, k) / sd, -3.0, 3.0);
+    const float x = low.x + static_cast<float>((value + 3.0) / 6.0) * frame_width;
+    const bool shown = i == shapes.shown_instance;
+    draw->AddLine(ImVec2(x, high.y - (shown ? 6.0f : 4.0f)), ImVec2(x, high.y),
+                  shown ? IM_COL32(20, 20, 20, 255) : IM_COL32(90, 90, 90, 200), shown ? 2.0f : 1.0f);
+  }
+}
+
+// The training instances: choosing one draws it beside the sliders' shape, with its name over it.
+void instance_list(const AppState& state, std::vector<Command>& out) {
+  const ShapeDocument& shapes = state.shapes;
+  const std::vector<std::string>& names = shapes.model->training.instances;
+  ImGui::Text("Training instances (compare)");
+  const float rows = static_cast<float>(std::min<std::size_t>(names.size(), 6));
+  if (ImGui::BeginListBox("##instances",
+                          ImVec2(-1.0f, rows * ImGui::GetTextLineHeightWithSpacing() + 4.0f))) {
+    for (std::size_t i = 0; i < names.size(); ++i) {
+      const bool shown = static_cast<int>(i) == shapes.shown_instance;
+      if (ImGui::Selectable(names[i].c_str(), shown)) emit(out, "show_instance", {shown ? "none" : names[i]});
+    }
+    ImGui::EndListBox();
+  }
+  if (shapes.shown_instance < 0) return;
+  const std::string& name = names[static_cast<std::size_t>(shapes.shown_instance)];
+  if (ImGui::Button("Sliders to it")) emit(out, "instance_latent", {name});
+  ImGui::SameLine();
+  if (ImGui::Button("Hide")) emit(out, "show_instance", {"none"});
+  if (const std::optional<InstanceBeside> beside = instance_beside(state)) {
+    const Eigen::Vector2d at = project(state.view, state.viewport, beside->label_anchor);
+    if (!at.allFinite()) return;
+    const ImVec2 size = ImGui::CalcTextSize(name.c_str());
+    ImGui::GetBackgroundDrawList()->AddText(
+        ImVec2(static_cast<float>(at.x()) - 0.5f * size.x, static_cast<float>(at.y()) - 1.5f * size.y),
+        IM_COL32(40, 40, 40, 255), name.c_str());
+  }
 }
 
 void shape_panel(const AppState& state, PanelState& panel, std::vector<Command>& out) {
@@ -127,8 +178,10 @@ void shape_panel(const AppState& state, PanelState& panel, std::vector<Command>&
     char label[64];
     std::snprintf(label, sizeof(label), "PC%d  %4.1f%%", k + 1, 100.0 * explained[k]);
     float value = static_cast<float>(values[k]);
+    const float frame_width = ImGui::CalcItemWidth();
     if (ImGui::SliderFloat(label, &value, -3.0f, 3.0f, "%+.2f"))
       emit(out, "set_latent", {current.name, std::to_string(k + 1), number_text(value)});
+    slider_ticks(shapes, current, k, frame_width);
   }
   if (shapes.animated_space == shapes.space) {
     if (ImGui::Button("Stop")) emit(out, "animate", {"off"});
@@ -145,6 +198,8 @@ void shape_panel(const AppState& state, PanelState& panel, std::vector<Command>&
   ImGui::TextDisabled("%d training instances, %d canonical points",
                       static_cast<int>(model.training.instances.size()),
                       static_cast<int>(model.canonical.rows()));
+  ImGui::Separator();
+  instance_list(state, out);
 }
 
 // The evaluation's tools on the observation: a partial view of 42, and the paper's perturbations.

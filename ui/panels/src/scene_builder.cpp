@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <limits>
+#include <optional>
 
 #include "partreg/core/deformation.hpp"
 #include "partreg/core/kdtree.hpp"
@@ -36,6 +37,28 @@ render::MeshItem labelled_mesh(const LabelDocument& document) {
   return item;
 }
 
+// Part colours washed towards grey: a training instance reads as a reference, not as the shape being edited.
+render::Colors muted_part_colors(const Eigen::VectorXi& part) {
+  const render::Colors colors = render::part_colors(part);
+  return 0.45f * colors + render::Colors::Constant(colors.rows(), 3, 0.55f * 0.75f);
+}
+
+void add_instance_beside(const AppState& state, render::Scene& scene) {
+  std::optional<InstanceBeside> shown = instance_beside(state);
+  if (!shown) return;
+  if (shown->mesh.faces.rows() > 0) {
+    render::MeshItem item;
+    item.mesh = std::move(shown->mesh);
+    if (shown->part.size() == item.mesh.vertices.rows()) item.vertex_colors = muted_part_colors(shown->part);
+    scene.meshes.push_back(std::move(item));
+    return;
+  }
+  render::PointSet points;
+  points.positions = std::move(shown->points);
+  points.colors = muted_part_colors(shown->part);
+  scene.point_sets.push_back(std::move(points));
+}
+
 void add_shape_space(AppState& state, render::Scene& scene) {
   const core::CategoryModel& model = *state.shapes.model;
   core::Mesh mesh = shape_space_mesh(state);
@@ -45,13 +68,15 @@ void add_shape_space(AppState& state, render::Scene& scene) {
     if (model.mesh_vertex_part.size() == item.mesh.vertices.rows())
       item.vertex_colors = render::part_colors(model.mesh_vertex_part);
     scene.meshes.push_back(std::move(item));
-    return;
+  } else {
+    // A model without a mesh: its canonical points, deformed by the holistic space.
+    render::PointSet points;
+    points.positions = model.holistic().deformed(state.shapes.latent(0));
+    points.colors = render::part_colors(model.canonical_part);
+    scene.point_sets.push_back(std::move(points));
   }
-  // A model without a mesh: its canonical points, deformed by the holistic space.
-  render::PointSet points;
-  points.positions = model.holistic().deformed(state.shapes.latent(0));
-  points.colors = render::part_colors(model.canonical_part);
-  scene.point_sets.push_back(std::move(points));
+  // After the sliders' shape, which so keeps its place in the renderer's per-mesh buffers.
+  add_instance_beside(state, scene);
 }
 
 // The canonical's frames (grasps) where the registration carries them: RGB triads sized to the shape. The

@@ -41,8 +41,8 @@ Eigen::VectorXd ShapeDocument::latent(int s) const {
   return std_devs.at(static_cast<std::size_t>(s)).cwiseProduct(space.variances.cwiseSqrt());
 }
 
-core::Mesh shape_space_mesh(AppState& state) {
-  ShapeDocument& shapes = state.shapes;
+core::Mesh shape_space_mesh(const AppState& state) {
+  const ShapeDocument& shapes = state.shapes;
   if (!shapes.loaded() || shapes.model->canonical_mesh.faces.rows() == 0) return {};
   std::vector<Eigen::VectorXd> latents;
   for (int s = 0; s < static_cast<int>(shapes.model->spaces.size()); ++s) latents.push_back(shapes.latent(s));
@@ -50,6 +50,54 @@ core::Mesh shape_space_mesh(AppState& state) {
   mesh.faces = shapes.model->canonical_mesh.faces;
   mesh.vertices = shapes.deformation->deform(latents, shapes.space == 0);
   return mesh;
+}
+
+namespace {
+
+// What the sliders show: the deformed mesh's vertices, or the holistic space's points without a mesh.
+core::Points sliders_shape(const AppState& state) {
+  const core::Mesh mesh = shape_space_mesh(state);
+  if (mesh.faces.rows() > 0) return mesh.vertices;
+  return state.shapes.model->holistic().deformed(state.shapes.latent(0));
+}
+
+Eigen::Vector3d view_right(const AppState& state) {
+  const CameraFrame frame = camera_frame(state.view, state.viewport);
+  return frame.up.cross(frame.eye - frame.target).normalized();
+}
+
+}  // namespace
+
+std::optional<InstanceBeside> instance_beside(const AppState& state) {
+  const ShapeDocument& shapes = state.shapes;
+  if (!shapes.loaded() || shapes.shown_instance < 0) return std::nullopt;
+  const core::CategoryModel& model = *shapes.model;
+  InstanceBeside shown;
+  shown.name = model.training.instances.at(static_cast<std::size_t>(shapes.shown_instance));
+  const core::Points& fitted = shapes.deformation->fitted_instance(shapes.shown_instance);
+  shown.offset = shapes.instance_offset;
+  const core::Points moved = fitted.rowwise() + shown.offset.transpose();
+  if (model.canonical_mesh.faces.rows() > 0) {
+    shown.mesh.vertices = moved;
+    shown.mesh.faces = model.canonical_mesh.faces;
+    shown.part = model.mesh_vertex_part;
+  } else {
+    shown.points = moved;
+    shown.part = model.canonical_part;
+  }
+  const CameraFrame frame = camera_frame(state.view, state.viewport);
+  const Eigen::Vector3d up = (frame.eye - frame.target).cross(view_right(state)).normalized();
+  const Eigen::VectorXd height = moved * up;
+  const Eigen::Vector3d centre = moved.colwise().mean().transpose();
+  shown.label_anchor = centre + (height.maxCoeff() - centre.dot(up)) * up;
+  return shown;
+}
+
+void place_instance_beside(AppState& state) {
+  if (!state.shapes.loaded()) return;
+  const Eigen::Vector3d right = view_right(state);
+  const Eigen::VectorXd along = sliders_shape(state) * right;
+  state.shapes.instance_offset = 1.2 * (along.maxCoeff() - along.minCoeff()) * right;
 }
 
 core::Points registration_points(const AppState& state, Eigen::VectorXi* part) {
@@ -89,6 +137,8 @@ void mode_bounds(AppState& state, Eigen::Vector3d& low, Eigen::Vector3d& high) {
       if (state.shapes.loaded()) {
         const core::Mesh mesh = shape_space_mesh(state);
         extend(mesh.faces.rows() > 0 ? mesh.vertices : state.shapes.model->canonical, low, high);
+        if (const std::optional<InstanceBeside> shown = instance_beside(state))
+          extend(shown->mesh.faces.rows() > 0 ? shown->mesh.vertices : shown->points, low, high);
       }
       break;
     case Mode::registration:

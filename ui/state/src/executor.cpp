@@ -46,6 +46,21 @@ void fit_view(AppState& state, const std::string& name = "iso") {
   Eigen::Vector3d low, high;
   mode_bounds(state, low, high);
   state.view = named_view(name, low, high, state.viewport);
+  // A shown training instance goes beside the shape along the new view's horizontal: place it, measure again.
+  if (state.shapes.shown_instance < 0) return;
+  place_instance_beside(state);
+  mode_bounds(state, low, high);
+  state.view = named_view(name, low, high, state.viewport);
+}
+
+// Frames the mode's geometry again without turning the camera (a fit's target and distance do not depend
+// on the orientation).
+void refit_keeping_orientation(AppState& state) {
+  Eigen::Vector3d low, high;
+  mode_bounds(state, low, high);
+  const OrbitView fitted = named_view("iso", low, high, state.viewport);
+  state.view.target = fitted.target;
+  state.view.distance = fitted.distance;
 }
 
 Outcome message(const std::string& text) { return Outcome{text, ""}; }
@@ -195,6 +210,57 @@ Outcome animate(AppState& state, const Command& command) {
   state.shapes.animation_phase = 0.0;
   state.mode = Mode::shape_space;
   return message("animating " + command.arguments[0] + " direction " + command.arguments[1]);
+}
+
+// A training instance by name, or by its place in the training list (from 1).
+int instance_index(const AppState& state, const std::string& which) {
+  if (!state.shapes.loaded()) throw UsageError("no model is loaded (load MODEL.prm first)");
+  const std::vector<std::string>& names = state.shapes.model->training.instances;
+  const auto found = std::find(names.begin(), names.end(), which);
+  if (found != names.end()) return static_cast<int>(found - names.begin());
+  std::size_t used = 0;
+  int index = 0;
+  try {
+    index = std::stoi(which, &used);
+  } catch (const std::exception&) {
+    used = 0;
+  }
+  if (used == which.size() && index >= 1 && index <= static_cast<int>(names.size())) return index - 1;
+  std::string known;
+  for (const std::string& name : names) known += (known.empty() ? "" : ", ") + name;
+  throw UsageError("no training instance '" + which + "' (instances: " + known + "; or 1 to " +
+                   std::to_string(names.size()) + ")");
+}
+
+Outcome show_instance(AppState& state, const Command& command) {
+  if (!state.shapes.loaded()) throw UsageError("no model is loaded (load MODEL.prm first)");
+  const std::string& which = command.arguments[0];
+  const int index = which == "none" ? -1 : instance_index(state, which);
+  state.shapes.shown_instance = index;
+  state.mode = Mode::shape_space;
+  place_instance_beside(state);
+  refit_keeping_orientation(state);
+  if (index < 0) return message("no training instance shown");
+  return message("showing training instance " + state.shapes.model->training.instances[index] +
+                 " beside the sliders' shape");
+}
+
+// The sliders of a space set to where a training instance lies in it (latent over standard deviation).
+Outcome instance_latent(AppState& state, const Command& command) {
+  const int index = instance_index(state, command.arguments[0]);
+  const int s =
+      command.option("space").empty() ? state.shapes.space : space_index(state, command.option("space"));
+  const core::ShapeSpace& space = state.shapes.model->spaces[static_cast<std::size_t>(s)];
+  Eigen::VectorXd& values = state.shapes.std_devs[static_cast<std::size_t>(s)];
+  for (int k = 0; k < space.dimensions(); ++k) {
+    const double sd = std::sqrt(space.variances[k]);
+    values[k] = sd > 0.0 ? space.training_latents(index, k) / sd : 0.0;  // a flat direction stays at 0
+  }
+  if (state.shapes.animated_space == s) state.shapes.animated_space = state.shapes.animated_dimension = -1;
+  state.shapes.space = s;
+  state.mode = Mode::shape_space;
+  return message(space.name + " sliders at training instance " +
+                 state.shapes.model->training.instances[static_cast<std::size_t>(index)]);
 }
 
 Outcome reset_latents(AppState& state, const Command& command) {
@@ -360,6 +426,8 @@ const std::map<std::string, Handler>& handlers() {
       {"sample_latents", sample_latents},
       {"register", run_registration},
       {"animate", animate},
+      {"show_instance", show_instance},
+      {"instance_latent", instance_latent},
       {"load_frames",
        [](AppState& s, const Command& c) {
          s.registration.frames = io::read_frames_file(c.arguments[0]);
@@ -379,10 +447,8 @@ const std::map<std::string, Handler>& handlers() {
        }},
       {"train",
        [](AppState& s, const Command& c) {
-         const std::string out = c.option("out", "model.prm");
-         const std::string text = train_model(s, c.arguments[0], out);
-         load_model(s, out);
-         return message(text);
+         const TrainingJob job = prepare_training(s, c);
+         return apply_training(s, job, job.run());
        }},
       {"step",
        [](AppState& s, const Command& c) {
@@ -474,6 +540,15 @@ Outcome apply_registration(AppState& state, const RegistrationJob& job, core::Re
        << state.registration.result->seconds << " s, " << state.registration.result->history.size()
        << " steps";
   return message(text.str());
+}
+
+TrainingJob prepare_training(const AppState& state, const Command& command) {
+  return prepare_training_job(state, command.arguments.at(0), command.option("out", "model.prm"));
+}
+
+Outcome apply_training(AppState& state, const TrainingJob& job, const std::string& summary) {
+  load_model(state, job.model_path);
+  return message(summary);
 }
 
 void advance_animation(AppState& state, double seconds) {

@@ -50,27 +50,38 @@ std::string perturb_observation(AppState& state, const std::string& kind_name, d
   return text.str();
 }
 
-std::string train_model(const AppState& state, const std::string& dataset_path,
-                        const std::string& model_path) {
+TrainingJob prepare_training_job(const AppState& state, const std::string& dataset_path,
+                                 const std::string& model_path) {
+  if (!std::filesystem::is_directory(dataset_path))
+    throw InputError("no dataset folder " + dataset_path + " to train on");
+  if (model_path.empty()) throw UsageError("train needs a model file to write (out=MODEL.prm)");
+  TrainingJob job{dataset_path, model_path, "", {}};
+  if (state.labelling.loaded()) {
+    job.labelled_instance = std::filesystem::path(state.labelling.mesh_path).stem().string();
+    job.labels = state.labelling.labels;
+  }
+  return job;
+}
+
+std::string TrainingJob::run(const core::TrainingProgressCallback& progress) const {
+  if (progress) progress(core::TrainingProgress{0, 0, "reading " + dataset_path});
   io::Dataset dataset = io::read_dataset(dataset_path);
   core::TrainingSettings settings;
-  const LabelDocument& labelling = state.labelling;
   std::string canonical_note = "no labels used";
-  if (labelling.loaded() && !dataset.part_folders) {
-    const std::string instance = std::filesystem::path(labelling.mesh_path).stem().string();
-    const bool in_dataset = std::any_of(dataset.instances.begin(), dataset.instances.end(),
-                                        [&](const core::TrainingInstance& i) { return i.name == instance; });
-    if (in_dataset) {
-      const Eigen::VectorXi& labels = labelling.labels.labels;
-      if ((labels.array() < 0).any())
-        throw UsageError("every face of " + instance + " needs a part before training (fill the rest)");
-      io::apply_face_labels(dataset, instance, labelling.labels.names, labels);
-      settings.canonical = instance;
-      canonical_note = "canonical " + instance + " with its labels";
-    }
+  const bool in_dataset =
+      !labelled_instance.empty() && !dataset.part_folders &&
+      std::any_of(dataset.instances.begin(), dataset.instances.end(),
+                  [&](const core::TrainingInstance& i) { return i.name == labelled_instance; });
+  if (in_dataset) {
+    if ((labels.labels.array() < 0).any())
+      throw UsageError("every face of " + labelled_instance +
+                       " needs a part before training (fill the rest)");
+    io::apply_face_labels(dataset, labelled_instance, labels.names, labels.labels);
+    settings.canonical = labelled_instance;
+    canonical_note = "canonical " + labelled_instance + " with its labels";
   }
   const core::CategoryModel model =
-      core::train_category(dataset.name, dataset.instances, dataset.part_names, settings);
+      core::train_category(dataset.name, dataset.instances, dataset.part_names, settings, nullptr, progress);
   io::write_model(model_path, model);
   return "trained " + model_path + " on " + std::to_string(dataset.instances.size()) + " instances (" +
          canonical_note + ")";

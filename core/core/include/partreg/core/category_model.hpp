@@ -37,11 +37,17 @@ struct CategoryModel {
   Eigen::VectorXi mesh_vertex_part;     ///< part index per mesh vertex (empty with an empty mesh)
   std::vector<ShapeSpace> spaces;       ///< spaces[0] is holistic; then one per part, in part_names order
   TrainingRecord training;
+  /// The holistic CPD weight field W_i of each training instance (K x 3M; row i is W_i vectorised as in
+  /// shape_space.hpp, in training.instances order; the canonical's own row is zero). Its fitted shape is
+  /// canonical + G(C, C) W_i, and any surface point z moves by G(z, C) W_i.
+  Eigen::MatrixXd training_weights;
 
   bool has_parts() const { return !part_names.empty(); }
   const ShapeSpace& holistic() const { return spaces.front(); }
   /// The space of a part by name (or "holistic"); throws UsageError listing the names when there is none.
   const ShapeSpace& space(const std::string& name) const;
+  /// W_i of training instance `instance` (index into training.instances) as an M x 3 matrix.
+  Points training_weight_field(int instance) const;
   /// The canonical rows belonging to part `part_index`.
   std::vector<int> part_rows(int part_index) const;
   /// Checks internal consistency (sizes, indices, finiteness); throws InputError naming what is wrong.

@@ -31,6 +31,10 @@ struct ShapeSpace {
   /// Column k is vec(G * basis_k): displacement per unit of latent k (3M x q). Orthonormal, ordered by
   /// variance: PCA-EM runs on the displacements, where shape lives (see learn_shape_space).
   Eigen::MatrixXd kernel_basis;
+  /// Row i is the latent of training instance i (K x q, training order): kernel_basis^T (vec D_i -
+  /// kernel_mean), the coordinates PCA gave its displacement. Divide by sqrt(variances) for standard
+  /// deviations.
+  Eigen::MatrixXd training_latents;
 
   int dimensions() const { return static_cast<int>(basis.cols()); }
   int point_count() const { return static_cast<int>(canonical.rows()); }

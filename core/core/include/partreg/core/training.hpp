@@ -59,6 +59,20 @@ struct TrainingReport {
 /// Called with one line of progress (for example after each CPD).
 using ProgressCallback = std::function<void(const std::string&)>;
 
+/// Progress with a known end. Training counts K (1 + P) equal steps for K instances and P parts: one CPD per
+/// instance other than the canonical and per space, and one PCA-EM per space. The last report has
+/// done == total.
+struct TrainingProgress {
+  int done = 0;      ///< steps finished
+  int total = 0;     ///< steps in all
+  std::string line;  ///< what the last step did (as ProgressCallback gets it)
+  /// done / total in [0, 1] (0 while total is 0).
+  double fraction() const { return total > 0 ? static_cast<double>(done) / total : 0.0; }
+};
+
+/// Called after each training step with how far training is.
+using TrainingProgressCallback = std::function<void(const TrainingProgress&)>;
+
 /// The instance every other one is closest to on average (symmetric Chamfer distance of FPS samples):
 /// a cheap stand-in for "reached with least deformation" (see docs/training.md). Returns its index.
 std::size_t choose_canonical(const std::vector<TrainingInstance>& instances,
@@ -75,5 +89,10 @@ Eigen::VectorXi propagate_labels(const Points& labelled, const Eigen::VectorXi& 
 CategoryModel train_category(const std::string& category, const std::vector<TrainingInstance>& instances,
                              const std::vector<std::string>& part_names, const TrainingSettings& settings,
                              TrainingReport* report = nullptr, const ProgressCallback& progress = {});
+
+/// train_category() reporting the fraction done as well as each line (for progress bars).
+CategoryModel train_category(const std::string& category, const std::vector<TrainingInstance>& instances,
+                             const std::vector<std::string>& part_names, const TrainingSettings& settings,
+                             TrainingReport* report, const TrainingProgressCallback& progress);
 
 }  // namespace partreg::core

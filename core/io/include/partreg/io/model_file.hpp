@@ -17,7 +17,8 @@
 namespace partreg::io {
 
 /// The model file format this build reads and writes. Bump it on any incompatible change.
-inline constexpr int kModelFormatVersion = 1;
+/// 2: the training instances' holistic weight fields and their latents in every space.
+inline constexpr int kModelFormatVersion = 2;
 
 /// Writes `model` to `path` atomically (a temporary file renamed into place).
 void write_model(const std::filesystem::path& path, const core::CategoryModel& model);

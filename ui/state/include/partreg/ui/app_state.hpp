@@ -57,6 +57,10 @@ struct ShapeDocument {
   int animated_space = -1;       ///< the space whose slider `animated_dimension` sweeps by itself (-1: none)
   int animated_dimension = -1;   ///< 0-based
   double animation_phase = 0.0;  ///< radians; the slider shows 2 sin(phase), a full sweep every 4 s
+  int shown_instance = -1;       ///< training instance drawn beside the sliders' shape (-1: none)
+  /// Added to the shown instance to put it beside the sliders' shape (normalised units). Fixed when it is
+  /// chosen or a named view is taken (place_instance_beside), so orbiting turns about both shapes.
+  Eigen::Vector3d instance_offset = Eigen::Vector3d::Zero();
 
   bool loaded() const { return model != nullptr; }
   /// The latent of space `s` (slider values times the square roots of the variances).
@@ -79,6 +83,13 @@ struct RegistrationDocument {
   std::vector<core::Frame> frames;
 };
 
+/// A job running off the UI thread, as the panels show it (the window copies it in once a frame).
+struct JobProgress {
+  bool running = false;
+  double fraction = 0.0;  ///< share done, in [0, 1]
+  std::string line;       ///< the job's last progress line
+};
+
 struct AppState {
   Viewport viewport;
   OrbitView view;
@@ -86,14 +97,33 @@ struct AppState {
   LabelDocument labelling;
   ShapeDocument shapes;
   RegistrationDocument registration;
-  std::string status;  ///< the last command's message
+  JobProgress training;  ///< a `train` from the panels running in the window (scripts train synchronously)
+  std::string status;    ///< the last command's message
   bool status_is_error = false;
   bool quit_requested = false;
   bool show_panels = true;
 };
 
 /// The canonical mesh deformed by the sliders (normalised units; empty when no model or no mesh).
-core::Mesh shape_space_mesh(AppState& state);
+core::Mesh shape_space_mesh(const AppState& state);
+
+/// The training instance `state.shapes.shown_instance`, drawn beside the sliders' shape: its holistic fit
+/// (canonical mesh moved by G(V, C) W_i, or canonical points by G(C, C) W_i without a mesh), moved by
+/// `state.shapes.instance_offset`. Normalised units.
+struct InstanceBeside {
+  std::string name;
+  core::Mesh mesh;               ///< no faces for a model without a mesh: then `points`
+  core::Points points;           ///< the fitted canonical points (without a mesh)
+  Eigen::VectorXi part;          ///< part per mesh vertex, or per point
+  Eigen::Vector3d offset;        ///< what was added to put it beside the sliders' shape (instance_offset)
+  Eigen::Vector3d label_anchor;  ///< just above its top, in the middle: where its name is written
+};
+/// The shown instance, or nothing when none is shown (or no model is loaded).
+std::optional<InstanceBeside> instance_beside(const AppState& state);
+
+/// Sets `state.shapes.instance_offset` for the current view: along the view's horizontal (to the right) by
+/// 1.2 times the sliders' shape's width there, which leaves a gap between the two.
+void place_instance_beside(AppState& state);
 
 /// The canonical points as the registration had them after history step `state.registration.step`
 /// (observed frame, data units), with their parts; rows a part space has not reached yet stay at the last

@@ -9,6 +9,7 @@
 #include "partreg/core/registration.hpp"
 #include "partreg/ui/app_state.hpp"
 #include "partreg/ui/commands.hpp"
+#include "partreg/ui/tools.hpp"
 
 namespace partreg::ui {
 
@@ -34,6 +35,13 @@ RegistrationJob prepare_registration(AppState& state, const Command& command);
 
 /// Puts a finished registration into the state (the step at its end) and says what it did.
 Outcome apply_registration(AppState& state, const RegistrationJob& job, core::RegistrationResult result);
+
+/// Checks a `train` command and prepares its job (copies of the labels it needs), so the window can run it
+/// off the UI thread. Throws UsageError / InputError when it cannot start.
+TrainingJob prepare_training(const AppState& state, const Command& command);
+
+/// Loads the model a finished training job wrote (what `train` does after training) and reports `summary`.
+Outcome apply_training(AppState& state, const TrainingJob& job, const std::string& summary);
 
 /// Moves an animated shape slider on by `seconds` (called once per drawn frame; nothing when none runs).
 void advance_animation(AppState& state, double seconds);

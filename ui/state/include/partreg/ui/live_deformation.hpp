@@ -5,6 +5,7 @@
 /// slider move costs one small matrix product per vertex (no kernel evaluations).
 
 #include <Eigen/Core>
+#include <map>
 #include <vector>
 
 #include "partreg/core/category_model.hpp"
@@ -23,6 +24,11 @@ class LiveDeformation {
   /// `latents[s]` holds space s's latent (its length is that space's dimensions).
   core::Points deform(const std::vector<Eigen::VectorXd>& latents, bool holistic);
 
+  /// Training instance `instance`'s holistic fit, exactly as CPD left it: the canonical mesh's vertices
+  /// moved by G(V, C) W_i, or without a mesh the canonical points moved by G(C, C) W_i (normalised units).
+  /// Computed once per instance (one kernel pass), then kept.
+  const core::Points& fitted_instance(int instance);
+
  private:
   struct SpaceCache {
     bool ready = false;
@@ -33,6 +39,7 @@ class LiveDeformation {
   void prepare(int space);
   const core::CategoryModel* model_ = nullptr;
   std::vector<SpaceCache> caches_;
+  std::map<int, core::Points> instances_;
 };
 
 }  // namespace partreg::ui

@@ -7,6 +7,8 @@
 #include <cstdint>
 #include <string>
 
+#include "partreg/core/training.hpp"
+#include "partreg/io/labels_file.hpp"
 #include "partreg/ui/app_state.hpp"
 
 namespace partreg::ui {
@@ -21,10 +23,24 @@ std::string take_partial_view(AppState& state, int index, int count);
 std::string perturb_observation(AppState& state, const std::string& kind, double paper_level,
                                 std::uint64_t seed);
 
-/// Trains a model on the dataset folder (as `partreg train`) and writes it to `model_path`; the mesh being
-/// labelled, when it is one of the dataset's instances, becomes the canonical with the current labels (every
-/// face must have a part). The caller loads the model.
-std::string train_model(const AppState& state, const std::string& dataset_path,
-                        const std::string& model_path);
+/// Training a model on a dataset folder (as `partreg train`), made ready to run anywhere: it holds copies of
+/// what it reads from the state, so the window can run it on a worker thread.
+struct TrainingJob {
+  std::string dataset_path;
+  std::string model_path;         ///< where the model is written (atomically)
+  std::string labelled_instance;  ///< stem of the mesh being labelled; empty when none is loaded
+  io::PartLabels labels;          ///< its labels, one per face
+
+  /// Reads the dataset and trains; when the labelled mesh is one of the dataset's instances it becomes the
+  /// canonical with these labels (every face must have a part, else UsageError). Writes the model and
+  /// returns the line for the status bar. Touches no app state; `progress` is called on this thread, first
+  /// with 0 of 0 steps while the dataset is read.
+  std::string run(const core::TrainingProgressCallback& progress = {}) const;
+};
+
+/// The job for training on `dataset_path` into `model_path` with the labelling document's mesh and labels.
+/// Throws InputError when the dataset folder does not exist.
+TrainingJob prepare_training_job(const AppState& state, const std::string& dataset_path,
+                                 const std::string& model_path);
 
 }  // namespace partreg::ui
