@@ -171,6 +171,21 @@ class FramePacer {
   int quiet_frames_ = 0;
 };
 
+// Draws the frame as it is now at full quality, then writes it: the same read-back as the headless path. A
+// file that cannot be written is reported in the status line.
+void write_screenshot(ui::GuiFrame& frame, ui::AppState& state, const std::string& path) {
+  std::vector<ui::Command> ignored;
+  for (int i = 0; i < kSettleFrames; ++i) frame.draw(state, 1.0 / 60.0, ignored);
+  try {
+    render::write_png(path, frame.read_pixels());
+    state.status = "wrote " + path;
+    state.status_is_error = false;
+  } catch (const std::exception& e) {
+    state.status = e.what();
+    state.status_is_error = true;
+  }
+}
+
 }  // namespace
 
 int run_window(const GuiOptions& options, ui::AppState& state, const std::vector<ui::Command>& script) {
@@ -219,8 +234,9 @@ int run_window(const GuiOptions& options, ui::AppState& state, const std::vector
         registration.start(state, command);
       else if (command.verb == "train")
         training.start(state, command);
-      else
-        ui::execute_reporting(state, command);
+      else if (ui::Outcome outcome;
+               ui::execute_reporting(state, command, &outcome) && !outcome.screenshot_path.empty())
+        write_screenshot(frame, state, outcome.screenshot_path);
     }
     registration.collect(state);
     training.collect(state);
@@ -234,10 +250,11 @@ int run_window(const GuiOptions& options, ui::AppState& state, const std::vector
         return 1;
       }
       if (!outcome.screenshot_path.empty()) {
-        // Draw the frame as it is now, then write it: the same read-back as the headless path.
-        std::vector<ui::Command> ignored;
-        for (int i = 0; i < kSettleFrames; ++i) frame.draw(state, 1.0 / 60.0, ignored);
-        render::write_png(outcome.screenshot_path, frame.read_pixels());
+        write_screenshot(frame, state, outcome.screenshot_path);
+        if (state.status_is_error) {
+          std::cerr << "partreg-gui: line " << command.line << ": " << state.status << '\n';
+          return 1;
+        }
         std::cerr << command.line << ": wrote " << outcome.screenshot_path << '\n';
       }
       if (next == script.size() && !options.script_path.empty()) break;  // a script run ends with its script

@@ -2,7 +2,9 @@
 
 #include <filesystem>
 #include <fstream>
+#include <nlohmann/json.hpp>
 
+#include "partreg/io/cloud_io.hpp"
 #include "partreg/ui/executor.hpp"
 #include "partreg/ui/script.hpp"
 #include "ui/ui_fixtures.hpp"
@@ -52,6 +54,9 @@ TEST(RegistrationStepper, APartialViewBringsItsViewpointFromViewsJson) {
   execute(state, make_command("register", {"holistic"}, {{"viewpoint", "1,2,3"}}));
   EXPECT_EQ(*state.registration.viewpoint, Eigen::Vector3d(1, 2, 3));
   EXPECT_FALSE(execute_reporting(state, make_command("register", {"holistic"}, {{"viewpoint", "1,2"}})));
+  execute(state, make_command("register", {"holistic"}, {{"viewpoint", "none"}}));  // the panel's checkbox
+  EXPECT_FALSE(state.registration.viewpoint);
+  EXPECT_FALSE(state.registration.settings.viewpoint);
   std::filesystem::remove_all(folder);
 }
 
@@ -62,6 +67,38 @@ TEST(RegistrationStepper, FramesOnTheCanonicalAreLoadedForTheLastStep) {
   ASSERT_EQ(state.registration.frames.size(), 1u);
   EXPECT_FALSE(execute_reporting(state, make_command("load_frames", {"/nonexistent/frames.json"})));
   EXPECT_EQ(state.registration.frames.size(), 1u);  // a failed load changes nothing
+}
+
+TEST(RegistrationStepper, SavesTheResultFilesAsPartregRegisterDoes) {
+  AppState state;
+  const std::string frames = std::string(PARTREG_SOURCE_DIR) + "/assets/frames/mug_handle_grasp.json";
+  EXPECT_FALSE(execute_reporting(state, make_command("save_result", {"anywhere"})));  // nothing registered
+  for (const Command& c : parse_script("load " + testing::small_model_path().string() + "\nload " +
+                                       testing::observed_cloud_path().string() + "\nload_frames " + frames +
+                                       "\nregister partwise direction=symmetric loss=cauchy"))
+    execute(state, c);
+  const std::filesystem::path folder = std::filesystem::temp_directory_path() / "partreg_ui_saved_result";
+  std::filesystem::remove_all(folder);
+  execute(state, make_command("save_result", {folder.string()}));
+  for (const char* name : {"result.json", "points.ply", "mesh.ply", "frames.json"})
+    EXPECT_TRUE(std::filesystem::exists(folder / name)) << name;
+  const nlohmann::json result = nlohmann::json::parse(std::ifstream(folder / "result.json"));
+  EXPECT_EQ(result["variant"], "partwise");
+  EXPECT_EQ(result["direction"], "symmetric");
+  EXPECT_EQ(result["loss"], "cauchy");
+  EXPECT_EQ(result["spaces"].size(), state.registration.result->fits.size());
+  const io::CloudFile points = io::read_cloud_file(folder / "points.ply");
+  EXPECT_EQ(points.cloud.points.rows(), state.shapes.model->canonical.rows());
+  EXPECT_EQ(points.attributes.integers.count("part"), 1u);
+  // A folder that holds files is never overwritten, and a failed save leaves no staging folder behind.
+  EXPECT_FALSE(execute_reporting(state, make_command("save_result", {folder.string()})));
+  EXPECT_NE(state.status.find("not empty"), std::string::npos) << state.status;
+  std::size_t entries = 0;
+  for (const auto& entry : std::filesystem::directory_iterator(folder.parent_path()))
+    if (entry.path().filename().string().find("partreg_ui_saved_result.partial") != std::string::npos)
+      ++entries;
+  EXPECT_EQ(entries, 0u);
+  std::filesystem::remove_all(folder);
 }
 
 TEST(RegistrationStepper, RegisterNeedsAModelAndAnObservation) {

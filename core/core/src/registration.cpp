@@ -218,6 +218,32 @@ Loss parse_loss(const std::string& name) {
   throw UsageError("unknown loss '" + name + "' (known: squared, huber, cauchy, trimmed)");
 }
 
+std::string to_string(Direction direction) {
+  switch (direction) {
+    case Direction::canonical_to_observed:
+      return "canonical";
+    case Direction::observed_to_canonical:
+      return "observed";
+    case Direction::symmetric:
+      return "symmetric";
+  }
+  return "unknown";
+}
+
+std::string to_string(Loss loss) {
+  switch (loss) {
+    case Loss::squared:
+      return "squared";
+    case Loss::huber:
+      return "huber";
+    case Loss::cauchy:
+      return "cauchy";
+    case Loss::trimmed:
+      return "trimmed";
+  }
+  return "unknown";
+}
+
 RegistrationResult register_observation(const CategoryModel& model, const Points& observed,
                                         const RegistrationSettings& settings) {
   const auto start = std::chrono::steady_clock::now();

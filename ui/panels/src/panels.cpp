@@ -20,11 +20,12 @@ void emit(std::vector<Command>& out, const std::string& verb, std::vector<std::s
 // File names only: full paths make screenshots depend on where the files are.
 std::string file_name(const std::string& path) { return std::filesystem::path(path).filename().string(); }
 
-// A text field backed by a std::string (ImGui 1.86 without imgui_stdlib's resize callback).
-bool input_text(const char* label, std::string& text) {
+// A text field backed by a std::string (ImGui 1.86 without imgui_stdlib's resize callback); `hint` shows
+// in grey while it is empty.
+bool input_text(const char* label, std::string& text, const char* hint = "") {
   char buffer[512];
   std::snprintf(buffer, sizeof(buffer), "%s", text.c_str());
-  const bool changed = ImGui::InputText(label, buffer, sizeof(buffer));
+  const bool changed = ImGui::InputTextWithHint(label, hint, buffer, sizeof(buffer));
   if (changed) text = buffer;
   return changed;
 }
@@ -38,9 +39,7 @@ std::string number_text(double value) {
 void labelling_panel(const AppState& state, PanelState& panel, std::vector<Command>& out) {
   const LabelDocument& document = state.labelling;
   if (!document.loaded()) {
-    ImGui::TextWrapped(
-        "Load a canonical mesh to label: File > load PATH in a script, or start the app with "
-        "a mesh.");
+    ImGui::TextWrapped("Open a canonical mesh to label (any format assimp reads), or a labelled model.");
     return;
   }
   ImGui::TextWrapped("%s", file_name(document.mesh_path).c_str());
@@ -216,6 +215,23 @@ void evaluation_tools(PanelState& panel, std::vector<Command>& out) {
     emit(out, "perturb", {kinds[panel.perturbation], number_text(panel.perturbation_level)});
 }
 
+// The variant and the objective; Register emits them as the register command's options.
+void registration_options(const AppState& state, PanelState& panel, std::vector<Command>& out) {
+  const char* variants[] = {"holistic", "partwise", "hol+part"};
+  const char* directions[] = {"canonical", "observed", "symmetric"};
+  const char* losses[] = {"squared", "huber", "cauchy", "trimmed"};
+  if (panel.variant < 0) panel.variant = static_cast<int>(state.registration.variant);
+  ImGui::Combo("Variant", &panel.variant, variants, 3);
+  ImGui::Combo("Closest points", &panel.direction, directions, 3);
+  ImGui::Combo("Loss", &panel.loss, losses, 4);
+  if (state.registration.viewpoint) ImGui::Checkbox("Use the viewpoint", &panel.use_viewpoint);
+  if (!ImGui::Button("Register")) return;
+  Command command = make_command("register", {variants[panel.variant]},
+                                 {{"direction", directions[panel.direction]}, {"loss", losses[panel.loss]}});
+  if (state.registration.viewpoint && !panel.use_viewpoint) command.options.emplace_back("viewpoint", "none");
+  out.push_back(std::move(command));
+}
+
 void registration_panel(const AppState& state, PanelState& panel, std::vector<Command>& out) {
   const RegistrationDocument& registration = state.registration;
   if (registration.observed.rows() == 0) {
@@ -224,11 +240,11 @@ void registration_panel(const AppState& state, PanelState& panel, std::vector<Co
   }
   ImGui::TextWrapped("%s", file_name(registration.observed_path).c_str());
   ImGui::Text("%d observed points", static_cast<int>(registration.observed.rows()));
-  const char* variants[] = {"holistic", "partwise", "hol+part"};
-  if (panel.variant < 0) panel.variant = static_cast<int>(registration.variant);
-  ImGui::Combo("Variant", &panel.variant, variants, 3);
-  if (ImGui::Button("Register")) emit(out, "register", {variants[panel.variant]});
+  registration_options(state, panel, out);
   evaluation_tools(panel, out);
+  input_text("##frames", panel.frames_path, "frames file (grasps)");
+  ImGui::SameLine();
+  if (ImGui::Button("Load frames")) emit(out, "load_frames", {panel.frames_path});
   if (!registration.result) return;
   const core::RegistrationResult& result = *registration.result;
   const int steps = static_cast<int>(result.history.size());
@@ -250,6 +266,19 @@ void registration_panel(const AppState& state, PanelState& panel, std::vector<Co
     ImGui::Text("space %s  cost %.4g  at %.3f s", h.space.c_str(), h.cost, h.seconds);
   }
   ImGui::Text("fit: mean %.4g, p90 %.4g (data units)", result.fit.mean, result.fit.p90);
+  input_text("##result", panel.result_folder);
+  ImGui::SameLine();
+  if (ImGui::Button("Save result")) emit(out, "save_result", {panel.result_folder});
+}
+
+// Open: a model, a mesh or a cloud (load decides by the file); in the registration tab with a model loaded,
+// the file is the observation.
+void file_row(const AppState& state, PanelState& panel, std::vector<Command>& out) {
+  input_text("##open", panel.open_path, "model, mesh or cloud file");
+  ImGui::SameLine();
+  if (!ImGui::Button("Open") || panel.open_path.empty()) return;
+  const bool observation = state.mode == Mode::registration && state.shapes.loaded();
+  emit(out, observation ? "load_observed" : "load", {panel.open_path});
 }
 
 }  // namespace
@@ -262,6 +291,7 @@ void draw_panels(const AppState& state, PanelState& panel, std::vector<Command>&
   const ImGuiWindowFlags fixed = ImGuiWindowFlags_NoMove | ImGuiWindowFlags_NoResize |
                                  ImGuiWindowFlags_NoCollapse | ImGuiWindowFlags_NoSavedSettings;
   ImGui::Begin("partreg", nullptr, fixed);
+  file_row(state, panel, out);
   // Programmatic mode changes (scripts, loads) select their tab once.
   const bool mode_changed = panel.first_frame || panel.shown_mode != state.mode;
   panel.first_frame = false;
@@ -281,8 +311,12 @@ void draw_panels(const AppState& state, PanelState& panel, std::vector<Command>&
     }
     ImGui::EndTabBar();
   }
-  // The status line at the bottom of the column.
-  ImGui::SetCursorPosY(io.DisplaySize.y - ImGui::GetTextLineHeightWithSpacing() * 2.5f);
+  // The screenshot row and the status line at the bottom of the column.
+  ImGui::SetCursorPosY(io.DisplaySize.y - ImGui::GetTextLineHeightWithSpacing() * 2.5f -
+                       ImGui::GetFrameHeightWithSpacing());
+  input_text("##screenshot", panel.screenshot_path);
+  ImGui::SameLine();
+  if (ImGui::Button("Screenshot")) emit(out, "screenshot", {panel.screenshot_path});
   ImGui::Separator();
   if (state.status_is_error)
     ImGui::TextColored(ImVec4(0.8f, 0.1f, 0.1f, 1.0f), "%s", state.status.c_str());

@@ -18,6 +18,7 @@
 #include "partreg/io/frames_file.hpp"
 #include "partreg/io/geometry_io.hpp"
 #include "partreg/io/model_file.hpp"
+#include "partreg/io/result_file.hpp"
 #include "partreg/ui/labelling.hpp"
 #include "partreg/ui/tools.hpp"
 
@@ -288,6 +289,19 @@ Outcome run_registration(AppState& state, const Command& command) {
   return apply_registration(state, job, job.run());
 }
 
+// The result files `partreg register` writes, into a new folder (all or nothing).
+Outcome save_result(AppState& state, const Command& command) {
+  const RegistrationDocument& registration = state.registration;
+  if (!registration.result) throw UsageError("nothing to save: register first");
+  const core::RegistrationSettings& settings = registration.settings;
+  const nlohmann::json report = io::result_json(
+      *registration.result, {state.shapes.model_path, registration.observed_path,
+                             core::to_string(settings.direction), core::to_string(settings.loss)});
+  const auto written = io::write_result_folder(command.arguments.at(0), *state.shapes.model,
+                                               *registration.result, report, registration.frames);
+  return message("saved " + std::to_string(written.size()) + " files to " + command.arguments.at(0));
+}
+
 Outcome move_step(AppState& state, int target) {
   if (!state.registration.result) throw UsageError("nothing to step through (register VARIANT first)");
   const int last = static_cast<int>(state.registration.result->history.size()) - 1;
@@ -425,6 +439,7 @@ const std::map<std::string, Handler>& handlers() {
       {"reset_latents", reset_latents},
       {"sample_latents", sample_latents},
       {"register", run_registration},
+      {"save_result", save_result},
       {"animate", animate},
       {"show_instance", show_instance},
       {"instance_latent", instance_latent},
@@ -524,14 +539,18 @@ RegistrationJob prepare_registration(AppState& state, const Command& command) {
   if (!command.option("loss").empty()) job.settings.loss = core::parse_loss(command.option("loss"));
   if (!command.option("iterations").empty())
     job.settings.outer_iterations = integer(command.option("iterations"), "iterations");
-  if (!command.option("viewpoint").empty())
-    state.registration.viewpoint = core::parse_vector3(command.option("viewpoint"), "viewpoint=X,Y,Z");
+  const std::string viewpoint = command.option("viewpoint");
+  if (viewpoint == "none")
+    state.registration.viewpoint.reset();
+  else if (!viewpoint.empty())
+    state.registration.viewpoint = core::parse_vector3(viewpoint, "viewpoint=X,Y,Z|none");
   job.settings.viewpoint = state.registration.viewpoint;
   return job;
 }
 
 Outcome apply_registration(AppState& state, const RegistrationJob& job, core::RegistrationResult result) {
   state.registration.variant = job.settings.variant;
+  state.registration.settings = job.settings;
   state.registration.step = static_cast<int>(result.history.size()) - 1;
   state.registration.result = std::move(result);
   state.mode = Mode::registration;

@@ -29,6 +29,8 @@ Variant parse_variant(
 std::string to_string(Variant variant);
 Direction parse_direction(const std::string& name);  ///< "canonical" | "observed" | "symmetric"
 Loss parse_loss(const std::string& name);            ///< "squared" | "huber" | "cauchy" | "trimmed"
+std::string to_string(Direction direction);          ///< the name parse_direction reads
+std::string to_string(Loss loss);                    ///< the name parse_loss reads
 
 /// Registration settings. Lengths are in normalised units (the model's canonical diagonal is 1).
 struct RegistrationSettings {

@@ -76,6 +76,7 @@ struct RegistrationDocument {
   /// canonical points facing it.
   std::optional<Eigen::Vector3d> viewpoint;
   core::Variant variant = core::Variant::holistic;
+  core::RegistrationSettings settings;  ///< what the result was registered with (saved with it)
   std::optional<core::RegistrationResult> result;
   int step = -1;  ///< index into result->history (-1: before the first step)
   /// Frames attached to the canonical (canonical data frame; `partreg register --frames` files), drawn where
