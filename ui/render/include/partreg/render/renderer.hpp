@@ -39,7 +39,7 @@ struct RenderSettings {
   int samples = 4;  ///< samples per pixel with multisampling (capped by the GL's limit)
   Background background = Background::white;  ///< transparent: straight alpha in read_pixels()
   /// Meshes with more triangles are drawn as a proxy of at most this many in interactive frames.
-  int interactive_triangles = 20000;
+  int interactive_triangles = 12000;
 };
 
 namespace detail {
