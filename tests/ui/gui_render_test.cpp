@@ -11,10 +11,12 @@
 namespace partreg::ui {
 namespace {
 
-render::Image replay(const std::string& script) {
+// `adjust` changes what no script can (a background job's progress) before the frames are drawn.
+render::Image replay(const std::string& script, void (*adjust)(AppState&) = nullptr) {
   render::OsMesaContext context;
   AppState state;
   for (const Command& command : parse_script(script)) execute(state, command);
+  if (adjust) adjust(state);
   GuiFrame frame(state.viewport);
   std::vector<Command> emitted;
   for (int i = 0; i < 3; ++i) frame.draw(state, 1.0 / 60.0, emitted);
@@ -32,6 +34,13 @@ TEST(GuiRender, MovingAShapeSlider) {
 
 TEST(GuiRender, SteppingARegistration) {
   testing::expect_matches_baseline(replay(testing::registration_script()), "gui_registration_step");
+}
+
+TEST(GuiRender, TrainingProgressShowsInEveryTab) {
+  // A training started from the panels runs on a worker thread; its progress bar sits above the status line
+  // whichever tab is open (here the registration tab of the stepping session).
+  const auto training = [](AppState& state) { state.training = {true, 0.4, "CPD 4 of 10 (mug_003)"}; };
+  testing::expect_matches_baseline(replay(testing::registration_script(), training), "gui_training_progress");
 }
 
 }  // namespace

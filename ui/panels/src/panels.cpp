@@ -104,10 +104,6 @@ void labelling_panel(const AppState& state, PanelState& panel, std::vector<Comma
   ImGui::SameLine();
   if (ImGui::Button("Train"))
     out.push_back(make_command("train", {panel.dataset_path}, {{"out", panel.model_out}}));
-  if (state.training.running) {
-    ImGui::ProgressBar(static_cast<float>(state.training.fraction), ImVec2(-1.0f, 0.0f));
-    ImGui::TextWrapped("%s", state.training.line.c_str());
-  }
 }
 
 // Where each training instance lies on the slider just drawn: a short mark under the frame, the shown
@@ -311,9 +307,14 @@ void draw_panels(const AppState& state, PanelState& panel, std::vector<Command>&
     }
     ImGui::EndTabBar();
   }
-  // The screenshot row and the status line at the bottom of the column.
+  // A running training's progress (whichever tab is open), the screenshot row and the status line at the
+  // bottom of the column.
+  const float rows = state.training.running ? 2.0f : 1.0f;
   ImGui::SetCursorPosY(io.DisplaySize.y - ImGui::GetTextLineHeightWithSpacing() * 2.5f -
-                       ImGui::GetFrameHeightWithSpacing());
+                       ImGui::GetFrameHeightWithSpacing() * rows);
+  if (state.training.running)
+    ImGui::ProgressBar(static_cast<float>(state.training.fraction), ImVec2(-1.0f, 0.0f),
+                       state.training.line.c_str());
   input_text("##screenshot", panel.screenshot_path);
   ImGui::SameLine();
   if (ImGui::Button("Screenshot")) emit(out, "screenshot", {panel.screenshot_path});
