@@ -1,6 +1,7 @@
 #include "background_jobs.hpp"
 
 #include <chrono>
+#include <cstdio>
 #include <exception>
 
 namespace partreg::app {
@@ -34,11 +35,20 @@ void BackgroundRegistration::start(ui::AppState& state, const ui::Command& comma
     return;
   }
   running_ = std::async(std::launch::async, [job = *job_] { return job.run(); });
+  started_ = std::chrono::steady_clock::now();
   report(state, "registering (" + core::to_string(job_->settings.variant) + ")...", false);
 }
 
 void BackgroundRegistration::collect(ui::AppState& state) {
-  if (!running_.valid() || running_.wait_for(std::chrono::seconds(0)) != std::future_status::ready) return;
+  if (!running_.valid()) return;
+  if (running_.wait_for(std::chrono::seconds(0)) != std::future_status::ready) {
+    const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - started_).count();
+    char text[96];
+    std::snprintf(text, sizeof text, "registering (%s)... %.1f s",
+                  core::to_string(job_->settings.variant).c_str(), seconds);
+    report(state, text, false);
+    return;
+  }
   try {
     core::RegistrationResult result = running_.get();
     if (state.shapes.model != job_->model) {  // another model was loaded meanwhile: the result is stale

@@ -5,6 +5,7 @@
 /// run every command synchronously, so replays are deterministic. Needs no window (tested without one).
 
 #include <atomic>
+#include <chrono>
 #include <future>
 #include <memory>
 #include <mutex>
@@ -22,8 +23,9 @@ class BackgroundRegistration {
  public:
   /// Starts the registration, or reports in the status line why it cannot (one already runs, bad options).
   void start(ui::AppState& state, const ui::Command& command);
-  /// When the registration has ended: applies its result (unless another model was loaded meanwhile) or
-  /// reports its failure. Call once a frame.
+  /// While it runs: its elapsed time in the status line (its length is not known ahead: the solver stops
+  /// when the cost settles). When it has ended: applies its result (unless another model was loaded
+  /// meanwhile) or reports its failure. Call once a frame.
   void collect(ui::AppState& state);
   /// True from start() until collect() has taken the result (the window keeps drawing meanwhile).
   bool running() const { return running_.valid(); }
@@ -31,6 +33,7 @@ class BackgroundRegistration {
  private:
   std::optional<ui::RegistrationJob> job_;
   std::future<core::RegistrationResult> running_;
+  std::chrono::steady_clock::time_point started_;
 };
 
 /// A `train` command on its own thread, with its progress in state.training while it runs. When it ends the

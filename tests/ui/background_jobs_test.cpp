@@ -1,5 +1,6 @@
-// The window's background jobs without a window: a training runs on a worker thread, reports its progress
-// into the state, refuses a second start and loads its model when collected.
+// The window's background jobs without a window: a registration and a training run on worker threads and
+// enter the state when collected; a training reports its progress, refuses a second start and loads its
+// model.
 #include "background_jobs.hpp"
 
 #include <gtest/gtest.h>
@@ -11,6 +12,45 @@
 
 namespace partreg::app {
 namespace {
+
+// Collects once a frame (every 5 ms) until the job has ended or a minute has passed.
+template <typename Job>
+void collect_until_done(Job& job, ui::AppState& state) {
+  const auto deadline = std::chrono::steady_clock::now() + std::chrono::minutes(1);
+  while (job.running() && std::chrono::steady_clock::now() < deadline) {
+    job.collect(state);
+    std::this_thread::sleep_for(std::chrono::milliseconds(5));
+  }
+}
+
+TEST(BackgroundRegistration, RunsOffTheCallingThreadAndAppliesItsResult) {
+  ui::AppState state;
+  ui::execute(state, ui::make_command("load", {testing::small_model_path().string()}));
+  ui::execute(state, ui::make_command("load", {testing::observed_cloud_path().string()}));
+  BackgroundRegistration registration;
+  registration.start(state, ui::make_command("register", {"hol+part"}));
+  ASSERT_TRUE(registration.running()) << state.status;
+  EXPECT_NE(state.status.find("registering (hol+part)"), std::string::npos) << state.status;
+  EXPECT_FALSE(state.registration.result);  // nothing enters the state before collect() sees it end
+  collect_until_done(registration, state);
+  ASSERT_FALSE(registration.running());
+  ASSERT_TRUE(state.registration.result) << state.status;
+  EXPECT_EQ(state.registration.variant, core::Variant::hol_part);
+  EXPECT_NE(state.status.find("registered (hol+part)"), std::string::npos) << state.status;
+}
+
+TEST(BackgroundRegistration, AResultForAModelNoLongerLoadedIsDiscarded) {
+  ui::AppState state;
+  ui::execute(state, ui::make_command("load", {testing::small_model_path().string()}));
+  ui::execute(state, ui::make_command("load", {testing::observed_cloud_path().string()}));
+  BackgroundRegistration registration;
+  registration.start(state, ui::make_command("register", {"holistic"}));
+  ui::execute(state, ui::make_command("load", {testing::small_model_path().string()}));  // a new model
+  collect_until_done(registration, state);
+  EXPECT_FALSE(state.registration.result);
+  EXPECT_TRUE(state.status_is_error);
+  EXPECT_NE(state.status.find("discarded"), std::string::npos) << state.status;
+}
 
 TEST(BackgroundTraining, RunsOffTheCallingThreadWithProgressAndLoadsItsModel) {
   const std::filesystem::path folder = testing::mug_dataset("background_dataset", 3);
