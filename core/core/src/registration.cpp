@@ -31,9 +31,12 @@ detail::Observation prepare_observation(const CategoryModel& model, const Points
   centroid = observed.colwise().mean().transpose();
   Observation observation;
   const Points normalised = (observed.rowwise() - centroid.transpose()) / model.normalization.scale;
-  const auto count = std::min<Eigen::Index>(settings.observed_points, normalised.rows());
+  // Farthest-point sampling costs points x kept; when every point is kept it would only reorder them.
   observation.points =
-      select_rows(normalised, farthest_point_indices(normalised, static_cast<std::size_t>(count)));
+      normalised.rows() <= settings.observed_points
+          ? normalised
+          : select_rows(normalised, farthest_point_indices(
+                                        normalised, static_cast<std::size_t>(settings.observed_points)));
   observation.tree = std::make_unique<KdTree>(observation.points);
   if (settings.viewpoint)
     observation.viewpoint = (*settings.viewpoint - centroid) / model.normalization.scale;
