@@ -3,6 +3,7 @@
 #include <chrono>
 #include <cstdio>
 #include <exception>
+#include <optional>
 
 namespace partreg::app {
 namespace {
@@ -14,6 +15,17 @@ void report(ui::AppState& state, const std::string& text, bool error) {
 
 bool finished(const std::future<std::string>& future) {
   return future.valid() && future.wait_for(std::chrono::seconds(0)) == std::future_status::ready;
+}
+
+// The job for a command, or nothing with the reason in the status line (bad options, nothing loaded).
+template <typename Prepare>
+auto prepared(ui::AppState& state, Prepare prepare) -> std::optional<decltype(prepare())> {
+  try {
+    return prepare();
+  } catch (const std::exception& e) {
+    report(state, e.what(), true);
+    return std::nullopt;
+  }
 }
 
 // Thrown from the progress callback to stop a training nobody waits for any more.
@@ -28,12 +40,8 @@ void BackgroundRegistration::start(ui::AppState& state, const ui::Command& comma
     report(state, "a registration is already running", true);
     return;
   }
-  try {
-    job_ = ui::prepare_registration(state, command);
-  } catch (const std::exception& e) {
-    report(state, e.what(), true);
-    return;
-  }
+  job_ = prepared(state, [&] { return ui::prepare_registration(state, command); });
+  if (!job_) return;
   running_ = std::async(std::launch::async, [job = *job_] { return job.run(); });
   started_ = std::chrono::steady_clock::now();
   report(state, "registering (" + core::to_string(job_->settings.variant) + ")...", false);
@@ -72,12 +80,8 @@ void BackgroundTraining::start(ui::AppState& state, const ui::Command& command) 
     report(state, "a training is already running (" + std::to_string(percent) + "% done): wait for it", true);
     return;
   }
-  try {
-    job_ = ui::prepare_training(state, command);
-  } catch (const std::exception& e) {
-    report(state, e.what(), true);
-    return;
-  }
+  job_ = prepared(state, [&] { return ui::prepare_training(state, command); });
+  if (!job_) return;
   shared_ = std::make_shared<Shared>();
   shared_->progress = {true, 0.0, "starting"};
   state.training = shared_->progress;

@@ -17,6 +17,7 @@
 #include <string>
 
 #include "partreg/render/image.hpp"
+#include "partreg/render/renderer.hpp"
 
 namespace partreg::testing {
 
@@ -82,6 +83,19 @@ inline void expect_matches_baseline(const render::Image& actual, const std::stri
                 << actual.width << "x" << actual.height << " and " << expected.width << "x" << expected.height
                 << "); wrote " << (folder / (name + ".actual.png")) << " and "
                 << (folder / (name + ".diff.png"));
+}
+
+/// Draws `scene` at full quality, then as an interactive frame, then at full quality again with the same
+/// renderer: the interactive frame differs from the full one but stays its likeness (at most `max_bad` of its
+/// pixels off by more than 48 in a channel), and the next full frame is the first one again.
+inline void expect_interactive_likeness(render::Renderer& renderer, const render::Scene& scene,
+                                        const render::Camera& camera, double max_bad) {
+  const render::Image full = renderer.render(scene, camera);
+  renderer.draw(scene, camera, render::FrameQuality::interactive);
+  const render::Image interactive = renderer.read_pixels();
+  EXPECT_NE(interactive.rgba, full.rgba);
+  EXPECT_LT(bad_pixel_fraction(interactive, full, 48), max_bad);
+  EXPECT_EQ(renderer.render(scene, camera).rgba, full.rgba);
 }
 
 }  // namespace partreg::testing

@@ -57,12 +57,7 @@ TEST(Renderer, InteractiveFrameOfADenseMeshLooksLikeTheFullOne) {
   OsMesaContext context;
   Renderer renderer(settings);
   const Camera camera = fit_camera(scene.bounds(), View::front, 320.0 / 240.0);
-  const Image full = renderer.render(scene, camera);
-  renderer.draw(scene, camera, FrameQuality::interactive);
-  const Image interactive = renderer.read_pixels();
-  EXPECT_NE(interactive.rgba, full.rgba);
-  EXPECT_LT(testing::bad_pixel_fraction(interactive, full, 48), 0.05);
-  EXPECT_EQ(renderer.render(scene, camera).rgba, full.rgba);
+  testing::expect_interactive_likeness(renderer, scene, camera, 0.05);
 }
 
 }  // namespace

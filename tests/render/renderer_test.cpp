@@ -180,12 +180,7 @@ TEST(Renderer, InteractiveFramesAreACheaperLikenessOfTheFullOne) {
   OsMesaContext context;
   Renderer renderer(small());
   const Camera camera = fit_camera(scene.bounds(), View::iso, double(kWidth) / kHeight);
-  const Image full = renderer.render(scene, camera);
-  renderer.draw(scene, camera, FrameQuality::interactive);
-  const Image interactive = renderer.read_pixels();
-  EXPECT_NE(interactive.rgba, full.rgba);
-  EXPECT_LT(testing::bad_pixel_fraction(interactive, full, 48), 0.03);
-  EXPECT_EQ(renderer.render(scene, camera).rgba, full.rgba);
+  testing::expect_interactive_likeness(renderer, scene, camera, 0.03);
 }
 
 TEST(Renderer, MeshesChangedBetweenFramesLookAsIfDrawnAfresh) {

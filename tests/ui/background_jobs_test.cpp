@@ -35,7 +35,7 @@ TEST(BackgroundRegistration, RunsOffTheCallingThreadAndAppliesItsResult) {
   collect_until_done(registration, state);
   ASSERT_FALSE(registration.running());
   ASSERT_TRUE(state.registration.result) << state.status;
-  EXPECT_EQ(state.registration.variant, core::Variant::hol_part);
+  EXPECT_EQ(state.registration.settings.variant, core::Variant::hol_part);
   EXPECT_NE(state.status.find("registered (hol+part)"), std::string::npos) << state.status;
 }
 

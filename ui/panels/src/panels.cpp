@@ -216,7 +216,7 @@ void registration_options(const AppState& state, PanelState& panel, std::vector<
   const char* variants[] = {"holistic", "partwise", "hol+part"};
   const char* directions[] = {"canonical", "observed", "symmetric"};
   const char* losses[] = {"squared", "huber", "cauchy", "trimmed"};
-  if (panel.variant < 0) panel.variant = static_cast<int>(state.registration.variant);
+  if (panel.variant < 0) panel.variant = static_cast<int>(state.registration.settings.variant);
   ImGui::Combo("Variant", &panel.variant, variants, 3);
   ImGui::Combo("Closest points", &panel.direction, directions, 3);
   ImGui::Combo("Loss", &panel.loss, losses, 4);

@@ -108,12 +108,17 @@ bool same(const Matrix& a, const Matrix& b) {
   return a.rows() == b.rows() && a.cols() == b.cols() && a == b;
 }
 
-// Per-element colours, or the uniform colour repeated.
-Colors colors_or(const Colors& colors, const Color& color, Eigen::Index count, const char* what) {
-  if (colors.rows() == 0) return color.transpose().replicate(count, 1);
+// Per-element colours must come one per element.
+void check_color_count(const Colors& colors, Eigen::Index count, const char* what) {
   if (colors.rows() != count)
     throw UsageError(std::string(what) + " has " + std::to_string(colors.rows()) + " colours for " +
                      std::to_string(count) + " elements");
+}
+
+// Per-element colours, or the uniform colour repeated.
+Colors colors_or(const Colors& colors, const Color& color, Eigen::Index count, const char* what) {
+  if (colors.rows() == 0) return color.transpose().replicate(count, 1);
+  check_color_count(colors, count, what);
   return colors;
 }
 
@@ -227,7 +232,9 @@ const MeshUpload& update_mesh_upload(MeshUpload& upload, const MeshItem& item,
 // brought up to date in the proxy's upload.
 const MeshUpload& update_proxy_upload(MeshUpload& full, const MeshItem& item, const Eigen::Vector3d& origin,
                                       int max_triangles) {
-  if (!full.proxy || !same(full.proxy_source, item.mesh.faces)) {
+  // Rebuilt for new faces, and for a new vertex count (its clusters index the vertices it was built from).
+  if (!full.proxy || !same(full.proxy_source, item.mesh.faces) ||
+      full.proxy->vertex_count() != item.mesh.vertices.rows()) {
     full.proxy = std::make_unique<MeshProxy>(item.mesh, max_triangles);
     full.proxy_source = item.mesh.faces;
   }
@@ -236,10 +243,14 @@ const MeshUpload& update_proxy_upload(MeshUpload& full, const MeshItem& item, co
   MeshItem coarse;
   coarse.mesh.vertices = proxy.vertices(item.mesh.vertices);
   coarse.mesh.faces = proxy.faces();
-  const Colors colors = colors_or(item.vertex_colors, item.color, item.mesh.vertices.rows(), "a mesh");
-  coarse.vertex_colors.resize(proxy.cluster_count(), 3);
-  for (int c = 0; c < proxy.cluster_count(); ++c)
-    coarse.vertex_colors.row(c) = colors.row(proxy.representatives()[static_cast<std::size_t>(c)]);
+  coarse.color = item.color;
+  if (item.vertex_colors.rows() > 0) {
+    check_color_count(item.vertex_colors, item.mesh.vertices.rows(), "a mesh");
+    coarse.vertex_colors.resize(proxy.cluster_count(), 3);
+    for (int c = 0; c < proxy.cluster_count(); ++c)
+      coarse.vertex_colors.row(c) =
+          item.vertex_colors.row(proxy.representatives()[static_cast<std::size_t>(c)]);
+  }
   return update_mesh_upload(*full.proxy_upload, coarse, origin);
 }
 

@@ -61,8 +61,7 @@ core::Points sliders_shape(const AppState& state) {
   return state.shapes.model->holistic().deformed(state.shapes.latent(0));
 }
 
-Eigen::Vector3d view_right(const AppState& state) {
-  const CameraFrame frame = camera_frame(state.view, state.viewport);
+Eigen::Vector3d view_right(const CameraFrame& frame) {
   return frame.up.cross(frame.eye - frame.target).normalized();
 }
 
@@ -86,7 +85,7 @@ std::optional<InstanceBeside> instance_beside(const AppState& state) {
     shown.part = model.canonical_part;
   }
   const CameraFrame frame = camera_frame(state.view, state.viewport);
-  const Eigen::Vector3d up = (frame.eye - frame.target).cross(view_right(state)).normalized();
+  const Eigen::Vector3d up = (frame.eye - frame.target).cross(view_right(frame)).normalized();
   const Eigen::VectorXd height = moved * up;
   const Eigen::Vector3d centre = moved.colwise().mean().transpose();
   shown.label_anchor = centre + (height.maxCoeff() - centre.dot(up)) * up;
@@ -95,7 +94,7 @@ std::optional<InstanceBeside> instance_beside(const AppState& state) {
 
 void place_instance_beside(AppState& state) {
   if (!state.shapes.loaded()) return;
-  const Eigen::Vector3d right = view_right(state);
+  const Eigen::Vector3d right = view_right(camera_frame(state.view, state.viewport));
   const Eigen::VectorXd along = sliders_shape(state) * right;
   state.shapes.instance_offset = 1.2 * (along.maxCoeff() - along.minCoeff()) * right;
 }

@@ -549,7 +549,6 @@ RegistrationJob prepare_registration(AppState& state, const Command& command) {
 }
 
 Outcome apply_registration(AppState& state, const RegistrationJob& job, core::RegistrationResult result) {
-  state.registration.variant = job.settings.variant;
   state.registration.settings = job.settings;
   state.registration.step = static_cast<int>(result.history.size()) - 1;
   state.registration.result = std::move(result);

@@ -24,6 +24,8 @@ class MeshProxy {
   /// Proxy triangles over cluster indices.
   const core::Faces& faces() const { return faces_; }
   int cluster_count() const { return static_cast<int>(representative_.size()); }
+  /// The number of vertices of the mesh it was built from.
+  Eigen::Index vertex_count() const { return static_cast<Eigen::Index>(cluster_of_.size()); }
   /// For each cluster, one mesh vertex in it (whose colour the cluster takes).
   const std::vector<int>& representatives() const { return representative_; }
   /// The proxy of the mesh with these vertices (same count as the mesh it was built from): cluster means.

@@ -75,8 +75,8 @@ struct RegistrationDocument {
   /// beside the file, or the register command's viewpoint= option. Registration then counts only the
   /// canonical points facing it.
   std::optional<Eigen::Vector3d> viewpoint;
-  core::Variant variant = core::Variant::holistic;
-  core::RegistrationSettings settings;  ///< what the result was registered with (saved with it)
+  core::RegistrationSettings
+      settings;  ///< what the result was registered with (variant, objective; saved with it)
   std::optional<core::RegistrationResult> result;
   int step = -1;  ///< index into result->history (-1: before the first step)
   /// Frames attached to the canonical (canonical data frame; `partreg register --frames` files), drawn where
