@@ -178,6 +178,13 @@ TEST_F(Cli, LabelAssignsFacesAndRefusesAnEmptySelection) {
                 .exit_code,
             2);
   EXPECT_EQ(run("label " + mesh + " --part lid --sphere 0,0,0,-1 --out " + path("neg.json")).exit_code, 2);
+  // The library names the value, the command adds the flag that carried it.
+  const Outcome zero_normal =
+      run("label " + mesh + " --part lid --plane 0,0,0,0,0,0 --out " + path("z.json"));
+  EXPECT_EQ(zero_normal.exit_code, 2);
+  EXPECT_NE(zero_normal.output.find("partreg: --plane: the plane's normal 0,0,0 has zero length"),
+            std::string::npos)
+      << zero_normal.output;
   EXPECT_FALSE(std::filesystem::exists(dir / "none.json"));
 }
 
