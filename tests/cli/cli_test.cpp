@@ -151,6 +151,11 @@ TEST_F(Cli, RegisterWritesItsOutputsAndRefusesBadInput) {
   const std::string out = " --points-out " + path("out.ply");
   const std::vector<std::pair<std::string, int>> cases = {
       {"register " + path("mug.prm") + " " + path("few.xyz") + out, 1},
+      {"register " + path("mug.prm") + " " + observed + " --restarts 0" + out, 2},
+      {"register " + path("mug.prm") + " " + observed + " --max-tilt 3.5" + out, 2},
+      {"register " + path("mug.prm") + " " + observed + " --max-tilt -0.1" + out, 2},
+      {"register " + path("mug.prm") + " " + observed + " --up 0,0,0" + out, 2},
+      {"register " + path("mug.prm") + " " + observed + " --viewpoint nan,0,0" + out, 2},
       {"register " + path("mug.prm") + " " + path("nan.xyz") + out, 1},
       {"register " + path("mug.prm") + " " + path("huge.xyz") + out, 1},
       {"register " + path("v2.prm") + " " + observed + out, 1},
