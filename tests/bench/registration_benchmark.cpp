@@ -33,7 +33,8 @@ const Setup* setup_for(const std::string& folder) {
   return &(cache[folder] = std::move(setup));
 }
 
-void run(benchmark::State& state, const std::string& folder, partreg::core::Variant variant) {
+void run(benchmark::State& state, const std::string& folder, partreg::core::Variant variant,
+         int restarts = -1) {
   const Setup* setup = setup_for(folder);
   if (!setup) {
     state.SkipWithError(("shared data absent: ../shared/data/" + folder).c_str());
@@ -41,6 +42,7 @@ void run(benchmark::State& state, const std::string& folder, partreg::core::Vari
   }
   partreg::core::RegistrationSettings settings;
   settings.variant = variant;
+  if (restarts > 0) settings.initialisation.restarts = restarts;
   // The observation holds 4000 points; the default settings match a farthest-point subset of 2000 of them
   // (docs/registration.md).
   double fit = 0.0;
@@ -53,6 +55,15 @@ void run(benchmark::State& state, const std::string& folder, partreg::core::Vari
 void BM_KettleHolistic(benchmark::State& state) { run(state, "kettles", partreg::core::Variant::holistic); }
 void BM_KettleHolPart(benchmark::State& state) { run(state, "kettles", partreg::core::Variant::hol_part); }
 void BM_DrillHolistic(benchmark::State& state) { run(state, "drills", partreg::core::Variant::holistic); }
+// One start (the single-start path) and the pose search over 12 yaws (successive halving to 2 finalists).
+void BM_KettleHolisticOneStart(benchmark::State& state) {
+  run(state, "kettles", partreg::core::Variant::holistic, 1);
+}
+void BM_KettleHolisticSearch12(benchmark::State& state) {
+  run(state, "kettles", partreg::core::Variant::holistic, 12);
+}
+BENCHMARK(BM_KettleHolisticOneStart)->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK(BM_KettleHolisticSearch12)->Unit(benchmark::kMillisecond)->UseRealTime();
 BENCHMARK(BM_KettleHolistic)->Unit(benchmark::kMillisecond)->UseRealTime();
 BENCHMARK(BM_KettleHolPart)->Unit(benchmark::kMillisecond)->UseRealTime();
 BENCHMARK(BM_DrillHolistic)->Unit(benchmark::kMillisecond)->UseRealTime();
