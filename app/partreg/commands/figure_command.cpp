@@ -115,9 +115,11 @@ void add_figure_command(CLI::App& app) {
   compare->add_option("--variants", o->variants, "comma-separated: holistic, partwise, hol+part")
       ->capture_default_str();
   compare->add_option("--points", o->observed_samples, "points sampled from an observed mesh")
-      ->capture_default_str();
+      ->capture_default_str()
+      ->check(point_count_range());
   compare->add_option("--restarts", o->restarts, "initial rotations about the up axis")
-      ->capture_default_str();
+      ->capture_default_str()
+      ->check(CLI::Range(1, 360));
   compare->add_flag("--align-axes", o->align_axes, "start from principal-axis rotations (poses far off)");
   compare->add_flag("--scale", o->estimate_scale, "also fit a uniform scale");
   add_shared_options(compare, *o, "640x360");

@@ -14,6 +14,7 @@
 #include "partreg/io/frames_file.hpp"
 #include "partreg/io/mesh_io.hpp"
 #include "partreg/io/model_file.hpp"
+#include "partreg/io/output_format.hpp"
 
 namespace partreg::app {
 namespace {
@@ -30,7 +31,7 @@ void write_outputs(const core::CategoryModel& model, const core::RegistrationRes
   if (!options.points_out.empty()) {
     io::PointAttributes attributes;
     attributes.integers["part"] = result.part;
-    io::write_cloud_ply(options.points_out, core::Cloud{result.deformed, {}}, attributes);
+    io::write_cloud(options.points_out, core::Cloud{result.deformed, {}}, attributes);
     std::cerr << "wrote " << options.points_out << '\n';
   }
   if (!options.mesh_out.empty()) {
@@ -64,6 +65,14 @@ nlohmann::json truth_errors(const core::CategoryModel& model, const core::Regist
           {"chamfer_normalised", chamfer / diagonal}};
 }
 
+// Every output is checked before any work: a bad name never leaves the outputs written before it.
+void check_register_outputs(const RegisterOptions& options) {
+  io::check_output(options.points_out, io::OutputKind::cloud, "--points-out");
+  io::check_output(options.mesh_out, io::OutputKind::mesh, "--mesh-out");
+  io::check_output(options.frames_out, io::OutputKind::json, "--frames-out");
+  io::check_output(options.json_path, io::OutputKind::json, "--json");
+}
+
 void run_register(RegisterOptions& options) {
   options.settings.variant = core::parse_variant(options.variant);
   options.settings.direction = core::parse_direction(options.direction);
@@ -75,6 +84,7 @@ void run_register(RegisterOptions& options) {
     throw UsageError("--frames and --frames-out go together");
   if (!options.frames_path.empty())
     io::read_frames_file(options.frames_path);  // refuse bad frames before working
+  check_register_outputs(options);
   const core::CategoryModel model = io::read_model(options.model_path);
   const core::Points observed = read_points_logged(options.observed_path, options.mesh_samples, 1);
   const core::RegistrationResult result = core::register_observation(model, observed, options.settings);
@@ -102,8 +112,9 @@ void add_register_command(CLI::App& app) {
       ->required();
   command->add_option("--variant", o->variant, "holistic | partwise | hol+part")->capture_default_str();
   command->add_option("--json", o->json_path, "result JSON ('-' for stdout)");
-  command->add_option("--points-out", o->points_out, "PLY of the deformed canonical points with their part");
-  command->add_option("--mesh-out", o->mesh_out, "the deformed canonical mesh (.obj or .ply)");
+  command->add_option("--points-out", o->points_out,
+                      "the deformed canonical points with their part (.ply, .pcd, .vtp, .xyz)");
+  command->add_option("--mesh-out", o->mesh_out, "the deformed canonical mesh (.obj, .ply, .vtp)");
   command->add_option("--frames", o->frames_path, "frames attached to the canonical (JSON)");
   command->add_option("--frames-out", o->frames_out, "where the transferred frames go");
   command->add_option("--viewpoint", o->viewpoint,
@@ -118,7 +129,8 @@ void add_register_command(CLI::App& app) {
   command->add_option("--truth", o->truth_path,
                       "ground-truth instance (cloud or mesh, observed frame): report Eq. 5 and Chamfer");
   command->add_option("--samples", o->mesh_samples, "points sampled from an observed mesh")
-      ->capture_default_str();
+      ->capture_default_str()
+      ->check(point_count_range());
   command->callback([o] { run_register(*o); });
 }
 

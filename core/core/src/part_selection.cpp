@@ -1,5 +1,6 @@
 #include "partreg/core/part_selection.hpp"
 
+#include <cmath>
 #include <sstream>
 
 #include "partreg/core/errors.hpp"
@@ -13,6 +14,9 @@ std::vector<double> parse_numbers(const std::string& text, std::size_t count, co
     char* end = nullptr;
     values.push_back(std::strtod(item.c_str(), &end));
     if (item.empty() || *end != '\0') throw UsageError(what + ": '" + item + "' is not a number");
+    // NaN, infinity and overflowing literals would travel on as silent garbage (or JSON null).
+    if (!std::isfinite(values.back()) || std::abs(values.back()) > 1e12)
+      throw UsageError(what + ": '" + item + "' is not a finite number of sensible size (|x| <= 1e12)");
   }
   if (values.size() != count)
     throw UsageError(what + " takes " + std::to_string(count) + " comma-separated numbers, got " +

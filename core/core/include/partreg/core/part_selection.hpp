@@ -23,7 +23,8 @@ struct SphereSelector {
 };
 using PartSelector = std::variant<BoxSelector, PlaneSelector, SphereSelector>;
 
-/// `count` comma-separated numbers ("0.1,2,-3"); UsageError naming `what` for a wrong count or a non-number.
+/// `count` comma-separated numbers ("0.1,2,-3"); UsageError naming `what` for a wrong count, a non-number,
+/// NaN, infinity or a magnitude above 1e12.
 std::vector<double> parse_numbers(const std::string& text, std::size_t count, const std::string& what);
 /// Three comma-separated numbers as a point or a direction ("x,y,z").
 Eigen::Vector3d parse_vector3(const std::string& text, const std::string& what);
