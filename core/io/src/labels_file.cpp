@@ -34,7 +34,8 @@ PartLabels read_labels_file(const std::filesystem::path& path) {
   std::ifstream in(path);
   if (!in) throw InputError("cannot open labels file " + file);
   const nlohmann::json json = nlohmann::json::parse(in, nullptr, /*allow_exceptions=*/false);
-  if (json.is_discarded() || !json.is_object()) throw InputError(file + " is not valid JSON");
+  if (json.is_discarded()) throw InputError(file + " is not valid JSON");
+  if (!json.is_object()) throw InputError(file + " is not a partreg labels file (not a JSON object)");
   if (!json.contains("format") || json.at("format") != "partreg-labels")
     throw InputError(file + " is not a partreg labels file");
   if (!json.contains("version") || json.at("version") != kLabelsFormatVersion)

@@ -236,13 +236,13 @@ nlohmann::json read_header(std::ifstream& in, const std::string& file, std::uint
   nlohmann::json header = nlohmann::json::parse(text, nullptr, /*allow_exceptions=*/false);
   if (header.is_discarded() || !header.is_object() || header.value("format", "") != "partreg-model")
     throw InputError(file + " is not a partreg model file (unreadable header)");
-  check_header_checksum(header, text, file);
   const int version = header["format_version"].is_number_integer() ? header["format_version"].get<int>() : -1;
   if (version != kModelFormatVersion)
     throw InputError("model file " + file + " has format version " + std::to_string(version) +
                      " (written by partreg " + header.value("partreg_version", std::string("?")) +
                      "); this partreg " + PARTREG_VERSION + " reads version " +
                      std::to_string(kModelFormatVersion) + ": retrain the model");
+  check_header_checksum(header, text, file);
   return header;
 }
 
