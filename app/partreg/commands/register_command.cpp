@@ -28,6 +28,8 @@ struct RegisterOptions {
 
 void write_outputs(const core::CategoryModel& model, const core::RegistrationResult& result,
                    const RegisterOptions& options) {
+  if (!options.mesh_out.empty() && model.canonical_mesh.faces.rows() == 0)  // before any output is written
+    throw InputError("model '" + model.category + "' has no canonical mesh (it was trained on clouds)");
   if (!options.points_out.empty()) {
     io::PointAttributes attributes;
     attributes.integers["part"] = result.part;
@@ -35,8 +37,6 @@ void write_outputs(const core::CategoryModel& model, const core::RegistrationRes
     std::cerr << "wrote " << options.points_out << '\n';
   }
   if (!options.mesh_out.empty()) {
-    if (model.canonical_mesh.faces.rows() == 0)
-      throw InputError("model '" + model.category + "' has no canonical mesh (it was trained on clouds)");
     const core::Mesh mesh = core::deform_mesh(model, result);
     io::write_mesh(options.mesh_out, mesh, &model.mesh_vertex_part);
     std::cerr << "wrote " << options.mesh_out << '\n';
