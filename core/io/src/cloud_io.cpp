@@ -1,6 +1,7 @@
 #include "partreg/io/cloud_io.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <cstring>
 #include <fstream>
 #include <set>
@@ -47,6 +48,15 @@ double read_scalar(std::istream& in, const std::string& type, PlyHeader::Format 
 
 bool is_integer_type(const std::string& type) { return type != "float" && type != "double"; }
 
+// An integer property as ints: a value beyond int (a uint of 4e9, "1e300" or "nan" in an ASCII file) is
+// refused, since casting it would be undefined.
+Eigen::VectorXi checked_integers(const Eigen::VectorXd& values, const std::string& file, const std::string& name) {
+  for (Eigen::Index i = 0; i < values.size(); ++i)
+    if (!(std::abs(values[i]) <= 2147483647.0))
+      throw InputError(file + ": integer property '" + name + "' holds a value beyond the int range");
+  return values.cast<int>();
+}
+
 CloudFile read_ply_cloud(const std::filesystem::path& path, std::uint64_t file_size) {
   std::ifstream in(path, std::ios::binary);
   const std::string file = path.string();
@@ -80,7 +90,7 @@ CloudFile read_ply_cloud(const std::filesystem::path& path, std::uint64_t file_s
     static const std::set<std::string> geometry = {"x", "y", "z", "nx", "ny", "nz"};
     if (geometry.count(property.name) && (has_normals || property.name.size() == 1)) continue;
     if (is_integer_type(property.type))
-      result.attributes.integers[property.name] = columns[property.name].cast<int>();
+      result.attributes.integers[property.name] = checked_integers(columns[property.name], file, property.name);
     else
       result.attributes.reals[property.name] = columns[property.name];
   }

@@ -5,6 +5,7 @@
 #include <set>
 
 #include "partreg/core/errors.hpp"
+#include "json_values.hpp"
 #include "partreg/io/atomic_file.hpp"
 
 namespace partreg::io {
@@ -46,7 +47,8 @@ PartLabels read_labels_file(const std::filesystem::path& path) {
     for (const auto& part : json.at("parts")) {
       labels.names.push_back(part.at("name").get<std::string>());
       // Read as int: nlohmann would wrap 300 into a byte (44) silently.
-      const auto color = part.at("color").get<std::array<int, 3>>();
+      const std::vector<int> color = detail::integers_of<int>(part.at("color"));
+      if (color.size() != 3) throw InputError(file + ": part '" + labels.names.back() + "' needs three colour channels");
       for (int channel : color)
         if (channel < 0 || channel > 255)
           throw InputError(file + ": part '" + labels.names.back() + "' has a colour channel " +
@@ -61,7 +63,7 @@ PartLabels read_labels_file(const std::filesystem::path& path) {
       throw InputError(file + ": target must be 'faces' or 'points'");
     labels.target = target == "faces" ? PartLabels::Target::faces : PartLabels::Target::points;
     labels.source = json.contains("source") ? json.at("source").get<std::string>() : "";
-    const auto values = json.at("labels").get<std::vector<int>>();
+    const std::vector<int> values = detail::integers_of<int>(json.at("labels"));
     if (!json.at("count").is_number_unsigned() || json.at("count").get<std::size_t>() != values.size())
       throw InputError(file + " says it has " + json.at("count").dump() + " labels but holds " +
                        std::to_string(values.size()));

@@ -8,6 +8,7 @@
 #include <sstream>
 
 #include "partreg/core/errors.hpp"
+#include "json_values.hpp"
 #include "partreg/io/atomic_file.hpp"
 #include "partreg/io/read_limits.hpp"
 
@@ -251,12 +252,12 @@ core::TrainingRecord training_from_json(const nlohmann::json& json) {
   record.instances = json.at("instances").get<std::vector<std::string>>();
   record.canonical = json.at("canonical").get<std::string>();
   record.canonical_choice = json.at("canonical_choice").get<std::string>();
-  record.canonical_points = json.at("canonical_points").get<int>();
+  record.canonical_points = detail::integer_of<int>(json.at("canonical_points"));
   record.beta = json.at("beta").get<double>();
   record.lambda = json.at("lambda").get<double>();
   record.outlier_weight = json.at("outlier_weight").get<double>();
-  record.latent_dimensions = json.at("latent_dimensions").get<int>();
-  record.seed = json.at("seed").get<std::uint64_t>();
+  record.latent_dimensions = detail::integer_of<int>(json.at("latent_dimensions"));
+  record.seed = detail::integer_of<std::uint64_t>(json.at("seed"));
   return record;
 }
 
