@@ -65,6 +65,7 @@ CloudFile read_ply_cloud(const std::filesystem::path& path, std::uint64_t file_s
     throw InputError(file + ": the first PLY element must be 'vertex'");
   const detail::PlyElement& vertex = header.elements.front();
   const auto n = static_cast<Eigen::Index>(vertex.count);
+  if (n == 0) throw InputError(file + " holds no points");
   std::map<std::string, Eigen::VectorXd> columns;
   for (const auto& property : vertex.properties) {
     if (property.is_list)
@@ -231,6 +232,7 @@ void check_attribute_sizes(const core::Cloud& cloud, const PointAttributes& attr
 
 CloudFile cloud_from_vtp(const std::filesystem::path& path) {
   detail::PolyData data = detail::read_vtp(path);
+  if (data.points.rows() == 0) throw InputError(path.string() + " holds no points");
   CloudFile file;
   file.cloud.points = std::move(data.points);
   file.cloud.normals = std::move(data.normals);

@@ -104,13 +104,17 @@ void unpack_colour(const pcl::PCLPointCloud2& blob, const pcl::PCLPointField& fi
 CloudFile read_pcd(const std::filesystem::path& path, std::uint64_t file_size) {
   silence_pcl();
   const std::string file = path.string();
-  {
-    std::ifstream in(path, std::ios::binary);
-    read_checked_pcd_header(in, file_size, file);
-  }
+  std::ifstream in(path, std::ios::binary);
+  const PcdHeader header = read_checked_pcd_header(in, file_size, file);
   pcl::PCLPointCloud2 blob;
   if (pcl::PCDReader().read(file, blob) < 0) throw InputError("cannot read PCD file " + file);
   check_blob(blob, file);
+  // PCL parses the header again, its own way: it must agree with partreg's reading of it.
+  const std::uint64_t points = static_cast<std::uint64_t>(blob.width) * blob.height;
+  if (points != header.points)
+    throw InputError("PCD file " + file + ": PCL read " + std::to_string(points) + " points where its header declares " +
+                     std::to_string(header.points));
+  if (points == 0) throw InputError(file + " holds no points");
   const pcl::PCLPointField* axes[3] = {find_field(blob, "x"), find_field(blob, "y"), find_field(blob, "z")};
   if (!axes[0] || !axes[1] || !axes[2]) throw InputError("PCD file " + file + " has no x, y, z fields");
   CloudFile result;
