@@ -56,7 +56,8 @@ const std::string kPcdFields =
 
 TEST_F(Hardened, MalformedPcdFilesAreRefusedBeforePclSeesThem) {
   // PCL crashed on each of these (exit 139).
-  expect_cloud_refused("text.pcd", "0.1 0.2 0.3\n", "no DATA line");
+  expect_cloud_refused("text.pcd", "0.1 0.2 0.3\n", "not a PCD file");
+  expect_cloud_refused("no_data.pcd", kPcdFields + "POINTS 3\n", "no DATA line");
   expect_cloud_refused("fields.pcd", "FIELDS x y z\nSIZE 4 4\nTYPE F F F\nWIDTH 1\nHEIGHT 1\nDATA ascii\n0 0 0\n",
                        "SIZE lists 2 values for 3 fields");
   expect_cloud_refused("noz.pcd", "FIELDS x y\nSIZE 4 4\nTYPE F F\nWIDTH 1\nHEIGHT 1\nDATA ascii\n0 0\n",
@@ -69,6 +70,11 @@ TEST_F(Hardened, MalformedPcdFilesAreRefusedBeforePclSeesThem) {
   const std::uint32_t sizes[2] = {1000, 36};
   compressed.append(reinterpret_cast<const char*>(sizes), sizeof sizes);
   expect_cloud_refused("lzf.pcd", compressed + "abc", "compressed data claims 1000 bytes");
+  // Found by fuzz_pcd: PCL takes an unknown line for the start of the data and crashes reading it.
+  expect_cloud_refused("unknown_line.pcd", "VERSIO N 0.7\n" + kPcdFields + "POINTS 3\nDATA ascii\n0 0 0\n0 0 0\n0 0 0\n",
+                       "unknown PCD header line 'VERSIO'");
+  expect_cloud_refused("control.pcd", "VERSIO\x1aN 0.7\n" + kPcdFields + "POINTS 3\nDATA ascii\n0 0 0\n0 0 0\n0 0 0\n",
+                       "control character");
   expect_cloud_refused("double_size.pcd", "FIELDS x y z\nSIZE 2 4 4\nTYPE F F F\nWIDTH 1\nHEIGHT 1\nDATA ascii\n0 0 0\n",
                        "floating point of size 2");
 }

@@ -1,6 +1,7 @@
 #include "pcd_header.hpp"
 
 #include <cstring>
+#include <set>
 #include <sstream>
 
 #include "header_lines.hpp"
@@ -54,6 +55,8 @@ void check_fields(const PcdHeader& header, const std::string& file) {
     if (field.type == 'F' && field.size != 4 && field.size != 8)
       throw InputError(file + ": PCD field '" + field.name + "' is floating point of size " +
                        std::to_string(field.size) + " (only 4 or 8)");
+    if (field.type != 'F' && field.size == 8)  // PCL 1.13 reads 64-bit integers inconsistently
+      throw InputError(file + ": PCD field '" + field.name + "' is a 64-bit integer (not supported)");
     values += static_cast<std::uint64_t>(field.count);
   }
   if (values > kMaxValuesPerPoint) throw InputError(file + ": PCD points have too many values");
@@ -85,6 +88,14 @@ void check_body(const PcdHeader& header, std::istream& in, std::uint64_t availab
   if (header.points > 0 && sizes[0] == 0) throw InputError(file + ": PCD compressed data is empty");
 }
 
+// PCL splits header lines at spaces, tabs and carriage returns only; other control characters (a vertical
+// tab, a NUL) would make its reading of the line differ from partreg's.
+void check_header_characters(const std::string& line, const std::string& file) {
+  for (unsigned char c : line)
+    if (c < 0x20 && c != '\t' && c != '\r')
+      throw InputError(file + ": PCD header holds a control character (not a PCD file?)");
+}
+
 }  // namespace
 
 std::uint64_t PcdHeader::bytes_per_point() const {
@@ -106,9 +117,14 @@ PcdHeader read_checked_pcd_header(std::istream& in, std::uint64_t file_size, con
   bool has_width = false, has_height = false, has_points = false;
   std::string line;
   while (read_header_line(in, line, budget, file)) {
+    check_header_characters(line, file);
     std::istringstream words(line);
     std::string key;
     if (!(words >> key) || key[0] == '#') continue;
+    // PCL takes any other line for the first line of data and then reads without fields: refuse it here.
+    static const std::set<std::string> known = {"VERSION", "FIELDS", "COLUMNS", "SIZE",   "TYPE", "COUNT",
+                                                "WIDTH",   "HEIGHT", "VIEWPOINT", "POINTS", "DATA"};
+    if (!known.count(key)) throw InputError(file + ": unknown PCD header line '" + key + "' (not a PCD file?)");
     const std::vector<std::string> values = words_after_keyword(words);
     if (key == "FIELDS" || key == "COLUMNS") {
       if (!header.fields.empty()) throw InputError(file + ": PCD header lists FIELDS twice");
