@@ -91,7 +91,7 @@ TEST_F(Hardened, PlyCountsAreCheckedAgainstTheFileSizeAndTheBudget) {
                        "property float z\nend_header\n" + std::string(40, '\0'),
                        "declares 5 vertices");
   expect_cloud_refused("negative.ply", header + "-3" + properties, "malformed PLY element");
-  expect_cloud_refused("no_end.ply", header + "1\nproperty float x\n" + std::string(100, 'a'), "no end_header");
+  expect_cloud_refused("no_end.ply", header + "1\nproperty float x\n" + std::string(100, 'a'), "end_header");
   expect_cloud_refused("endless_header.ply", "ply\n" + std::string(3 << 20, 'x'), "header is longer");
 }
 
@@ -101,7 +101,8 @@ const std::string kTriangleHeader =
 
 TEST_F(Hardened, MeshFilesThatCrashedAssimpAreRefused) {
   // A header without end_header made `label` loop forever inside assimp.
-  expect_mesh_refused("no_end.ply", kTriangleHeader + "0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n", "no end_header");
+  expect_mesh_refused("no_end.ply", kTriangleHeader + "0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n", "end_header missing");
+  expect_mesh_refused("no_end_at_all.ply", kTriangleHeader, "no end_header");
   // A face naming a vertex that does not exist crashed label, views and render.
   expect_mesh_refused("index.ply", kTriangleHeader + "end_header\n0 0 0\n1 0 0\n0 1 0\n3 0 1 7\n", "out of range");
   // A truncated binary mesh crashed in assimp's post-processing.
@@ -110,6 +111,15 @@ TEST_F(Hardened, MeshFilesThatCrashedAssimpAreRefused) {
       "property float z\nelement face 100\nproperty list uchar int vertex_indices\nend_header\n";
   binary += std::string(1000, '\0');
   expect_mesh_refused("truncated.ply", binary, "truncated");
+  // Found by fuzz_mesh: assimp aborts on a header line the PLY grammar does not have.
+  expect_mesh_refused("unknown_line.ply",
+                      "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\npropert\x01\nproperty float z\n"
+                      "element face 1\nproperty list uchar int vertex_indices\nend_header\n0 0\n1 0\n0 1\n3 0 1 2\n",
+                      "unknown PLY header line");
+  expect_mesh_refused("no_y.ply",
+                      "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float z\n"
+                      "element face 1\nproperty list uchar int vertex_indices\nend_header\n0 0\n1 0\n0 1\n3 0 1 2\n",
+                      "no 'y' property");
   // An OFF file claiming more faces than it holds aborted.
   expect_mesh_refused("faces.off", "OFF\n3 1000 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n", "declares 1000 faces");
   expect_mesh_refused("few_faces.off", "OFF\n3 2 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n" + std::string(40, '\n'),

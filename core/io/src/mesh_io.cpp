@@ -116,7 +116,8 @@ core::Mesh read_mesh(const std::filesystem::path& path) {
     mesh.vertices = std::move(data.points);
     mesh.faces = std::move(data.faces);
   } else {
-    if (extension == ".ply") detail::read_checked_ply_header(path);  // assimp trusts PLY headers
+    if (extension == ".ply")  // assimp trusts PLY headers
+      detail::check_ply_mesh_header(detail::read_checked_ply_header(path), name);
     mesh = read_with_assimp(path);
   }
   mesh.faces = without_degenerate(mesh.faces);

@@ -92,8 +92,10 @@ PlyHeader read_ply_header(std::istream& in, const std::string& file) {
       }
       if (property.name.empty()) throw InputError(file + ": malformed PLY property line '" + line + "'");
       header.elements.back().properties.push_back(property);
+    } else if (keyword != "comment" && keyword != "obj_info" && !keyword.empty()) {
+      // assimp aborts on some lines it does not know: the PLY grammar has no others.
+      throw InputError(file + ": unknown PLY header line '" + line.substr(0, 40) + "' (is end_header missing?)");
     }
-    // comment, obj_info and unknown lines are ignored
   }
   throw InputError(file + ": PLY header has no end_header (truncated file?)");
 }
@@ -126,6 +128,19 @@ PlyHeader read_checked_ply_header(const std::filesystem::path& path) {
   std::ifstream in(path, std::ios::binary);
   if (!in) throw InputError("cannot open " + path.string());
   return read_checked_ply_header(in, size, path.string());
+}
+
+void check_ply_mesh_header(const PlyHeader& header, const std::string& file) {
+  for (const PlyElement& element : header.elements) {
+    if (element.name != "vertex") continue;
+    for (const char* axis : {"x", "y", "z"}) {
+      bool found = false;
+      for (const PlyProperty& property : element.properties) found |= property.name == axis && !property.is_list;
+      if (!found) throw InputError(file + ": PLY vertices have no '" + axis + "' property");
+    }
+    return;
+  }
+  throw InputError(file + ": PLY file has no vertex element");
 }
 
 }  // namespace partreg::io::detail

@@ -40,6 +40,9 @@ void check_ply_body_fits(const PlyHeader& header, std::uint64_t available, const
 /// `in` at the first byte of the data.
 PlyHeader read_checked_ply_header(std::istream& in, std::uint64_t file_size, const std::string& file);
 
+/// A mesh's header (before assimp reads the file): a vertex element with scalar x, y and z.
+void check_ply_mesh_header(const PlyHeader& header, const std::string& file);
+
 /// Reads the header of the PLY file `path` and checks its counts against the file's size.
 PlyHeader read_checked_ply_header(const std::filesystem::path& path);
 
