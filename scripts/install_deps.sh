@@ -4,11 +4,12 @@ set -euo pipefail
 packages=(
   build-essential cmake ninja-build pkg-config
   libeigen3-dev libceres-dev libnanoflann-dev
-  libpcl-dev libassimp-dev
+  libpcl-dev libassimp-dev libvtk9-dev
   libcli11-dev libspdlog-dev nlohmann-json3-dev
   libgtest-dev libgmock-dev libbenchmark-dev
   libembree-dev libtbb-dev libcairo2-dev libstb-dev
   libosmesa6-dev libglfw3-dev libimgui-dev python3-glad xvfb xauth
+  clang-14 libclang-rt-14-dev
 )
 missing=()
 for package in "${packages[@]}"; do

@@ -59,6 +59,7 @@ int main(int argc, char** argv) {
   partreg::app::GuiOptions options;
   std::string antialiasing = "msaa", size = "1280x800";
   CLI::App app{"partreg-gui: label canonical meshes, explore shape spaces, step through registrations"};
+  app.set_version_flag("--version", std::string("partreg-gui ") + PARTREG_VERSION);
   app.add_option("INPUT", options.input, "a model (.prm), a mesh to label, or a cloud to register");
   app.add_option("--script", options.script_path, "replay these commands (docs/gui.md)");
   app.add_flag("--headless", options.headless, "no window: replay --script through OSMesa");
@@ -66,17 +67,23 @@ int main(int argc, char** argv) {
   app.add_option("--aa", antialiasing, "msaa | edge | none")->capture_default_str();
   try {
     app.parse(argc, argv);
-    if (std::sscanf(size.c_str(), "%dx%d", &options.width, &options.height) != 2 || options.width < 64 ||
-        options.height < 64)
-      throw partreg::UsageError("--size must be WIDTHxHEIGHT, at least 64x64");
+    if (std::sscanf(size.c_str(), "%5dx%5d", &options.width, &options.height) != 2 || options.width < 64 ||
+        options.height < 64 || options.width > 16384 || options.height > 16384)
+      throw partreg::UsageError("--size must be WIDTHxHEIGHT, from 64x64 to 16384x16384");
     options.antialiasing = partreg::core::parse_enum<partreg::render::Antialiasing>(antialiasing);
     return partreg::app::run(options);
-  } catch (const CLI::ParseError& error) {
+  } catch (const CLI::CallForHelp& error) {
     return app.exit(error);
+  } catch (const CLI::CallForVersion& error) {
+    return app.exit(error);
+  } catch (const CLI::ParseError& error) {
+    // CLI11's own codes (105, 109, ...) are not partreg's: every usage error exits 2, as the CLI does.
+    std::cerr << "partreg-gui: " << error.what() << '\n';
+    return 2;
   } catch (const partreg::UsageError& error) {
     std::cerr << "partreg-gui: " << error.what() << '\n';
     return 2;
-  } catch (const partreg::InputError& error) {
+  } catch (const std::exception& error) {  // InputError and anything a library throws: a runtime failure
     std::cerr << "partreg-gui: " << error.what() << '\n';
     return 1;
   }

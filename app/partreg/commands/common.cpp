@@ -11,6 +11,8 @@
 #include "partreg/io/atomic_file.hpp"
 #include "partreg/io/geometry_io.hpp"
 #include "partreg/io/labels_file.hpp"
+#include "partreg/io/output_format.hpp"
+#include "partreg/io/read_limits.hpp"
 
 namespace partreg::app {
 
@@ -32,18 +34,19 @@ core::Points read_points_logged(const std::string& path, std::size_t count, std:
   return std::move(cloud.points);
 }
 
-void write_json_or_stdout(const nlohmann::json& report, const std::string& path) {
+void write_json_or_stdout(const nlohmann::json& report, const std::string& path, bool log) {
   if (path.empty()) return;
   if (path == "-") {
     std::cout << report.dump(2) << '\n';
     return;
   }
+  io::output_format(path, io::OutputKind::json, "JSON output");
   io::write_atomically(path, [&](const std::filesystem::path& temporary) {
     std::ofstream out(temporary);
     out << report.dump(2) << '\n';
-    if (!out) throw InputError("cannot write " + path);
+    if (!out.flush()) throw InputError("cannot write " + path);
   });
-  std::cerr << "wrote " << path << '\n';
+  if (log) std::cerr << "wrote " << path << '\n';
 }
 
 nlohmann::json spaces_json(const core::CategoryModel& model) {
@@ -84,11 +87,20 @@ std::string apply_labels_file(io::Dataset& dataset, const std::string& labels_pa
 
 std::pair<int, int> parse_size(const std::string& text, const std::string& option) {
   std::stringstream in(text);
-  int width = 0, height = 0;
+  long long width = 0, height = 0;
   char x = 0;
   if (!(in >> width >> x >> height) || !in.eof() || (x != 'x' && x != 'X') || width < 1 || height < 1)
     throw UsageError(option + " takes WIDTHxHEIGHT in pixels (like 1280x960), not '" + text + "'");
-  return {width, height};
+  // The renderer's framebuffer and the PNG's pixels are allocated at once: refuse what cannot be drawn.
+  constexpr long long kMaxSide = 16384, kMaxPixels = 64LL << 20;
+  if (width > kMaxSide || height > kMaxSide || width * height > kMaxPixels)
+    throw UsageError(option + " " + text + " is too large: at most " + std::to_string(kMaxSide) +
+                     " pixels a side and " + std::to_string(kMaxPixels >> 20) + " megapixels");
+  return {static_cast<int>(width), static_cast<int>(height)};
+}
+
+CLI::Range point_count_range() {
+  return CLI::Range(std::uint64_t{1}, static_cast<std::uint64_t>(io::kReadBudget.max_points));
 }
 
 }  // namespace partreg::app

@@ -3,6 +3,7 @@
 /// Small pieces every command shares: reading any geometry file as points with a log line, and
 /// writing a JSON report to a file (atomically) or to stdout.
 
+#include <CLI/CLI.hpp>
 #include <cstdint>
 #include <filesystem>
 #include <nlohmann/json.hpp>
@@ -24,7 +25,8 @@ core::Points read_points_logged(const std::string& path, std::size_t count, std:
                                 bool exact_count = false);
 
 /// Writes `report` (indented) to `path` atomically; to stdout when path is "-"; nowhere when path is empty.
-void write_json_or_stdout(const nlohmann::json& report, const std::string& path);
+/// Logs "wrote PATH" unless `log` is false (files inside a staged folder: their path is not the user's).
+void write_json_or_stdout(const nlohmann::json& report, const std::string& path, bool log = true);
 
 using io::matrix_json;
 
@@ -40,5 +42,9 @@ std::string apply_labels_file(io::Dataset& dataset, const std::string& labels_pa
 std::pair<int, int> parse_size(const std::string& text, const std::string& option);
 
 using io::StagedFolder;
+
+/// The check every option holding a number of points or samples gets: 1 to the reading budget, so a negative
+/// number is a usage error naming the option instead of wrapping around in a size_t.
+CLI::Range point_count_range();
 
 }  // namespace partreg::app

@@ -12,6 +12,7 @@
 #include "partreg/core/parallel.hpp"
 #include "partreg/io/atomic_file.hpp"
 #include "partreg/io/cloud_io.hpp"
+#include "partreg/io/output_format.hpp"
 
 namespace partreg::app {
 namespace {
@@ -94,6 +95,8 @@ void run_cpd(const CpdOptions& options) {
   const core::ThreadBudget budget(options.threads);
   if (options.mode != "rigid" && options.mode != "affine" && options.mode != "nonrigid")
     throw UsageError("--mode must be rigid, affine or nonrigid, not '" + options.mode + "'");
+  io::check_output(options.out_path, io::OutputKind::cloud, "--out");
+  io::check_output(options.json_path, io::OutputKind::json, "--json");
   const core::Points source =
       read_points_logged(options.source_path, options.points, options.seed, options.exact_points);
   const core::Points target =
@@ -106,7 +109,7 @@ void run_cpd(const CpdOptions& options) {
 
   core::Cloud moved;
   moved.points = registered.moved;
-  io::write_cloud_ply(options.out_path, moved);
+  io::write_cloud(options.out_path, moved);
   std::cerr << "wrote " << options.out_path << '\n';
   write_json_or_stdout(report, options.json_path);
 }
@@ -118,21 +121,19 @@ void add_cpd_command(CLI::App& app) {
   CLI::App* command =
       app.add_subcommand("cpd", "Coherent Point Drift from SOURCE onto TARGET (clouds or meshes)");
   add_threads_flag(command, options->threads);
-  command->add_option("SOURCE", options->source_path, "cloud or mesh to move")
-      ->required()
-      ->check(CLI::ExistingFile);
-  command->add_option("TARGET", options->target_path, "cloud or mesh to reach")
-      ->required()
-      ->check(CLI::ExistingFile);
+  // No CLI::ExistingFile: a missing input is a runtime failure (exit 1) here as in every command.
+  command->add_option("SOURCE", options->source_path, "cloud or mesh to move")->required();
+  command->add_option("TARGET", options->target_path, "cloud or mesh to reach")->required();
   command->add_option("--mode", options->mode, "rigid | affine | nonrigid")->capture_default_str();
-  command->add_option("--out", options->out_path, "PLY file for the moved source points (target frame)")
+  command->add_option("--out", options->out_path, "the moved source points, target frame (.ply, .pcd, .vtp, .xyz)")
       ->required();
   command->add_option("--json", options->json_path, "write the result as JSON here ('-' for stdout)");
   command
       ->add_option("--points", options->points,
                    "points of each input: meshes are sampled, clouds farthest-point downsampled (default: "
                    "clouds as they are, meshes 1000)")
-      ->capture_default_str();
+      ->capture_default_str()
+      ->check(point_count_range());
   command->add_option("--seed", options->seed, "sampling seed")->capture_default_str();
   command
       ->add_option("--beta", options->nonrigid.beta, "kernel width, normalised units (target diagonal = 1)")
@@ -144,7 +145,8 @@ void add_cpd_command(CLI::App& app) {
   command->add_option("--tolerance", options->nonrigid.tolerance, "relative change that stops the iterations")
       ->capture_default_str();
   command->add_option("--max-iterations", options->nonrigid.max_iterations, "iteration cap")
-      ->capture_default_str();
+      ->capture_default_str()
+      ->check(CLI::Range(1, 1000000));
   command->add_flag("--scale", options->scale, "rigid mode: estimate a uniform scale too");
   command->add_flag("--exact", options->exact,
                     "nonrigid mode: the exact solver (full kernel, no truncation)");

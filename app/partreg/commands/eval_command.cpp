@@ -146,7 +146,8 @@ nlohmann::json registration_json(const core::RegistrationSettings& settings) {
 // results.csv, tables.md and the sweep plots of every category, into `folder`.
 void write_reports(const fs::path& folder, const std::vector<eval::EvalRow>& rows) {
   eval::write_rows_csv(folder / "results.csv", rows);
-  std::ofstream(folder / "tables.md") << eval::markdown_report(rows);
+  std::ofstream tables(folder / "tables.md");
+  if (!(tables << eval::markdown_report(rows)).flush()) throw InputError("cannot write tables.md (disk full?)");
   for (const std::string& category : eval::categories_of(rows))
     for (bool partial : {false, true})
       eval::write_sweep_plot(folder / (category + (partial ? "_partial" : "_full") + "_sweeps.png"), rows,
@@ -181,7 +182,7 @@ void run_eval(EvalOptions& options) {
       {"registrations", rows.size()},
       {"seconds", seconds},
       {"mean_registration_seconds", rows.empty() ? 0.0 : registration_seconds / rows.size()}};
-  std::ofstream(folder.staging() / "run.json") << run.dump(2) << '\n';
+  write_json_or_stdout(run, (folder.staging() / "run.json").string(), /*log=*/false);
   folder.commit();
   std::cerr << rows.size() << " registrations in " << clock_text(seconds) << " ("
             << (rows.empty() ? 0.0 : registration_seconds / rows.size()) << " s each); wrote results.csv, "

@@ -120,7 +120,8 @@ void add_figure_command(CLI::App& app) {
       ->add_option("--variants", o->variants, "comma-separated: " + core::enum_choices<core::Variant>(", "))
       ->capture_default_str();
   compare->add_option("--points", o->observed_samples, "points sampled from an observed mesh")
-      ->capture_default_str();
+      ->capture_default_str()
+      ->check(point_count_range());
   add_registration_flags(compare, o->registration, {"variant"});
   add_threads_flag(compare, o->threads);
   add_shared_options(compare, *o, "640x360");

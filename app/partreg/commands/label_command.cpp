@@ -12,6 +12,7 @@
 #include "partreg/core/part_selection.hpp"
 #include "partreg/io/labels_file.hpp"
 #include "partreg/io/mesh_io.hpp"
+#include "partreg/io/output_format.hpp"
 
 namespace partreg::app {
 namespace {
@@ -69,6 +70,7 @@ void report(const io::PartLabels& labels, const core::Mesh& mesh) {
 void run_label(const LabelOptions& options) {
   const core::PartSelector selector = selector_of(options);
   if (options.part.empty()) throw UsageError("--part must name a part");
+  io::check_output(options.out_path, io::OutputKind::json, "--out");
   const core::Mesh mesh = io::read_mesh(options.mesh_path);
   io::PartLabels labels = starting_labels(options, mesh);
   const std::vector<bool> selected = core::select_faces(mesh, selector);

@@ -16,6 +16,7 @@
 #include "partreg/io/frames_file.hpp"
 #include "partreg/io/mesh_io.hpp"
 #include "partreg/io/model_file.hpp"
+#include "partreg/io/output_format.hpp"
 
 namespace partreg::app {
 namespace {
@@ -30,15 +31,15 @@ struct RegisterOptions {
 
 void write_outputs(const core::CategoryModel& model, const core::RegistrationResult& result,
                    const std::vector<core::Frame>& frames, const RegisterOptions& options) {
+  if (!options.mesh_out.empty() && model.canonical_mesh.faces.rows() == 0)  // before any output is written
+    throw InputError("model '" + model.category + "' has no canonical mesh (it was trained on clouds)");
   if (!options.points_out.empty()) {
     io::PointAttributes attributes;
     attributes.integers["part"] = result.part;
-    io::write_cloud_ply(options.points_out, core::Cloud{result.deformed, {}}, attributes);
+    io::write_cloud(options.points_out, core::Cloud{result.deformed, {}}, attributes);
     std::cerr << "wrote " << options.points_out << '\n';
   }
   if (!options.mesh_out.empty()) {
-    if (model.canonical_mesh.faces.rows() == 0)
-      throw InputError("model '" + model.category + "' has no canonical mesh (it was trained on clouds)");
     const core::Mesh mesh = core::deform_mesh(model, result);
     io::write_mesh(options.mesh_out, mesh, &model.mesh_vertex_part);
     std::cerr << "wrote " << options.mesh_out << '\n';
@@ -64,9 +65,18 @@ nlohmann::json truth_errors(const core::RegistrationResult& result,
   return json;
 }
 
+// Every output is checked before any work: a bad name never leaves the outputs written before it.
+void check_register_outputs(const RegisterOptions& options) {
+  io::check_output(options.points_out, io::OutputKind::cloud, "--points-out");
+  io::check_output(options.mesh_out, io::OutputKind::mesh, "--mesh-out");
+  io::check_output(options.frames_out, io::OutputKind::json, "--frames-out");
+  io::check_output(options.json_path, io::OutputKind::json, "--json");
+}
+
 void run_register(const RegisterOptions& options) {
   if (options.frames_out.empty() != options.frames_path.empty())
     throw UsageError("--frames and --frames-out go together");
+  check_register_outputs(options);
   const core::ThreadBudget budget(options.threads);
   // Frames are read before the work, so bad frames are refused before anything runs.
   const std::vector<core::Frame> frames =
@@ -98,8 +108,9 @@ void add_register_command(CLI::App& app) {
   command->add_option("OBSERVED", o->observed_path, "observed cloud or mesh (data units and frame)")
       ->required();
   command->add_option("--json", o->json_path, "result JSON ('-' for stdout)");
-  command->add_option("--points-out", o->points_out, "PLY of the deformed canonical points with their part");
-  command->add_option("--mesh-out", o->mesh_out, "the deformed canonical mesh (.obj or .ply)");
+  command->add_option("--points-out", o->points_out,
+                      "the deformed canonical points with their part (.ply, .pcd, .vtp, .xyz)");
+  command->add_option("--mesh-out", o->mesh_out, "the deformed canonical mesh (.obj, .ply, .vtp)");
   command->add_option("--frames", o->frames_path, "frames attached to the canonical (JSON)");
   command->add_option("--frames-out", o->frames_out, "where the transferred frames go");
   add_registration_flags(command, o->settings);
@@ -107,7 +118,8 @@ void add_register_command(CLI::App& app) {
   command->add_option("--truth", o->truth_path,
                       "ground-truth instance (cloud or mesh, observed frame): report the errors against it");
   command->add_option("--samples", o->mesh_samples, "points sampled from an observed mesh")
-      ->capture_default_str();
+      ->capture_default_str()
+      ->check(point_count_range());
   command->callback([o] { run_register(*o); });
 }
 

@@ -15,6 +15,7 @@
 #include "partreg/io/cloud_io.hpp"
 #include "partreg/io/geometry_io.hpp"
 #include "partreg/io/mesh_io.hpp"
+#include "partreg/io/output_format.hpp"
 #include "partreg/render/headless.hpp"
 
 namespace partreg::app {
@@ -125,16 +126,12 @@ void run_render(const RenderOptions& options) {
 
 }  // namespace
 
-void check_output_folder(const std::string& path) {
-  const std::filesystem::path folder = std::filesystem::path(path).parent_path();
-  if (!folder.empty() && !std::filesystem::is_directory(folder))
-    throw InputError("cannot write " + path + ": folder " + folder.string() + " does not exist");
-}
+void check_output_folder(const std::string& path) { io::check_output(path, io::OutputKind::image, "--out"); }
 
 void add_render_commands(CLI::App& app) {
   auto o = std::make_shared<RenderOptions>();
   CLI::App* command = app.add_subcommand("render", "Draw clouds and meshes into a PNG, headlessly (OSMesa)");
-  command->add_option("FILES", o->files, "clouds (PCD, PLY, XYZ) and meshes (OBJ, PLY, STL, ...)");
+  command->add_option("FILES", o->files, "clouds (PCD, PLY, VTP, XYZ) and meshes (OBJ, PLY, VTP, STL, ...)");
   command->add_option("--out", o->out, "the PNG to write")->required();
   command->add_option("--size", o->size, "image size WIDTHxHEIGHT (pixels)")->capture_default_str();
   command->add_option("--view", o->view, "iso | front | side | top (+Y up)")->capture_default_str();
@@ -145,7 +142,8 @@ void add_render_commands(CLI::App& app) {
   command->add_option("--target", o->target, "X,Y,Z point the camera looks at");
   command->add_option("--up", o->up, "X,Y,Z up direction of the camera")->capture_default_str();
   command->add_option("--point-radius", o->point_radius, "splat radius in data units (0: automatic)")
-      ->capture_default_str();
+      ->capture_default_str()
+      ->check(CLI::Range(0.0, 1e12));
   command->add_option("--antialias", o->antialias, "msaa (4 samples) | edge (fast) | none")
       ->capture_default_str();
   command->add_flag("--wireframe", o->wireframe, "draw mesh edges over the surfaces");

@@ -15,8 +15,8 @@ namespace partreg::app {
 /// "x,y,z" -> a vector (the core's parser); UsageError naming the option otherwise.
 using core::parse_vector3;
 
-/// Throws InputError ("cannot write X: folder Y does not exist") before any work when `path`'s folder is
-/// missing.
+/// Checks a PNG output before any work (io::check_output): UsageError for another extension, InputError
+/// ("cannot write X: folder Y does not exist") when its folder is missing.
 void check_output_folder(const std::string& path);
 
 /// `partreg figure compare` and `partreg figure space`.

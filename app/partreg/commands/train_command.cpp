@@ -6,6 +6,7 @@
 #include "partreg/commands/commands.hpp"
 #include "partreg/commands/common.hpp"
 #include "partreg/commands/registration_flags.hpp"
+#include "partreg/io/output_format.hpp"
 #include "partreg/core/errors.hpp"
 #include "partreg/core/parallel.hpp"
 #include "partreg/core/training.hpp"
@@ -59,6 +60,8 @@ void run_train(TrainOptions& options) {
   if (options.settings.latent_dimensions < 1) throw UsageError("--latent must be at least 1");
   if (options.settings.canonical_points < 10) throw UsageError("--points must be at least 10");
   if (!options.canonical.empty()) options.settings.canonical = options.canonical;
+  io::check_output(options.out_path, io::OutputKind::model, "--out");
+  io::check_output(options.json_path, io::OutputKind::json, "--json");
   io::Dataset dataset = io::read_dataset(options.dataset_path, options.dataset);
   std::cerr << "dataset " << dataset.name << ": " << dataset.instances.size() << " instances"
             << (dataset.part_names.empty() ? ", no parts" : "") << '\n';
@@ -96,11 +99,14 @@ void add_train_command(CLI::App& app) {
   command->add_option("--canonical", options->canonical, "instance to use as canonical (default: automatic)");
   command->add_option("--labels", options->labels_path, "labels file giving the canonical its parts");
   command->add_option("--latent", options->settings.latent_dimensions, "dimensions per shape space")
-      ->capture_default_str();
+      ->capture_default_str()
+      ->check(CLI::Range(1, 1000));
   command->add_option("--points", options->settings.canonical_points, "canonical points M")
-      ->capture_default_str();
+      ->capture_default_str()
+      ->check(CLI::Range(10, 1000000));
   command->add_option("--samples", options->dataset.points_per_instance, "surface samples per mesh instance")
-      ->capture_default_str();
+      ->capture_default_str()
+      ->check(point_count_range());
   command->add_option("--beta", options->settings.beta, "CPD kernel width (normalised length)")
       ->capture_default_str();
   command->add_option("--lambda", options->settings.lambda, "CPD smoothness weight")->capture_default_str();

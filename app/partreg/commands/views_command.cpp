@@ -42,8 +42,8 @@ void run_views(ViewsOptions& options) {
   const core::ThreadBudget budget(options.threads);
   parse_resolution(options.resolution, options.camera);
   const std::vector<Eigen::Vector3d> directions = eval::sphere_directions(options.count);
+  StagedFolder folder(options.out_path);  // refuses a folder holding other files before any work
   const eval::ViewCaster caster = make_caster(options.input_path);
-  StagedFolder folder(options.out_path);
   nlohmann::json listing = {{"input", options.input_path},
                             {"resolution", {options.camera.width, options.camera.height}},
                             {"fov_degrees", options.camera.fov_degrees},
@@ -59,7 +59,7 @@ void run_views(ViewsOptions& options) {
                                 {"viewpoint", {view.viewpoint.x(), view.viewpoint.y(), view.viewpoint.z()}}});
     std::cerr << name << ": " << view.points.rows() << " points\n";
   }
-  write_json_or_stdout(listing, (folder.staging() / "views.json").string());
+  write_json_or_stdout(listing, (folder.staging() / "views.json").string(), /*log=*/false);
   folder.commit();
   std::cerr << "wrote " << directions.size() << " views and views.json (directions, viewpoints) to "
             << options.out_path << '\n';
@@ -75,7 +75,8 @@ void add_views_command(CLI::App& app) {
   command->add_option("INPUT", options->input_path, "mesh (rays hit its surface) or cloud")->required();
   command->add_option("--out", options->out_path, "new folder: view_NNN.ply and views.json")->required();
   command->add_option("--count", options->count, "viewpoints: 12, 42, 162, ... (tessellated sphere)")
-      ->capture_default_str();
+      ->capture_default_str()
+      ->check(CLI::Range(1, 100000));
   command->add_option("--resolution", options->resolution, "depth image size WxH")->capture_default_str();
   command->add_option("--fov", options->camera.fov_degrees, "vertical field of view (degrees)")
       ->capture_default_str();

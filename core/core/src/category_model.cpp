@@ -1,5 +1,7 @@
 #include "partreg/core/category_model.hpp"
 
+#include <cmath>
+
 #include "partreg/core/errors.hpp"
 
 namespace partreg::core {
@@ -32,6 +34,10 @@ void CategoryModel::validate() const {
   auto fail = [&](const std::string& what) { throw InputError("model '" + category + "': " + what); };
   if (m == 0) fail("no canonical points");
   if (!canonical.allFinite()) fail("canonical points are not finite");
+  if (!(normalization.scale > 0.0) || !std::isfinite(normalization.scale))
+    fail("the normalisation scale must be a positive finite length");
+  if (!normalization.centre.allFinite()) fail("the normalisation centre is not finite");
+  if (!canonical_mesh.vertices.allFinite()) fail("mesh vertices are not finite");
   if (canonical_part.size() != m) fail("part labels do not match the canonical points");
   const int parts = static_cast<int>(part_names.size());
   if (canonical_part.size() > 0 &&
@@ -42,6 +48,9 @@ void CategoryModel::validate() const {
     fail("a mesh face refers to a vertex that does not exist");
   if (mesh_vertex_part.size() != canonical_mesh.vertices.rows())
     fail("mesh part labels do not match its vertices");
+  if (mesh_vertex_part.size() > 0 &&
+      (mesh_vertex_part.minCoeff() < 0 || mesh_vertex_part.maxCoeff() >= std::max(parts, 1)))
+    fail("a mesh vertex has a part index out of range");
   if (spaces.empty() || spaces.front().name != "holistic") fail("the first space must be the holistic one");
   if (spaces.size() != static_cast<std::size_t>(parts) + 1)
     fail("there must be one space per part plus holistic");
@@ -62,7 +71,13 @@ void CategoryModel::validate() const {
       fail("space " + space.name + ": array sizes do not agree");
     if (space.training_latents.rows() != instances || space.training_latents.cols() != q)
       fail("space " + space.name + ": training latents do not match the instances and dimensions");
-    if (!(space.beta > 0.0)) fail("space " + space.name + ": beta must be positive");
+    if (!(space.beta > 0.0) || !std::isfinite(space.beta)) fail("space " + space.name + ": beta must be positive");
+    if (!space.mean.allFinite() || !space.basis.allFinite() || !space.kernel_mean.allFinite() ||
+        !space.kernel_basis.allFinite() || !space.training_latents.allFinite() || !space.variances.allFinite() ||
+        !std::isfinite(space.total_variance))
+      fail("space " + space.name + ": an array holds NaN or infinite values");
+    if (space.variances.size() > 0 && space.variances.minCoeff() < 0.0)
+      fail("space " + space.name + ": a variance is negative");
   }
 }
 

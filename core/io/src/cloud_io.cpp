@@ -1,6 +1,7 @@
 #include "partreg/io/cloud_io.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <cstring>
 #include <fstream>
 #include <set>
@@ -8,8 +9,11 @@
 
 #include "partreg/core/errors.hpp"
 #include "partreg/io/atomic_file.hpp"
+#include "partreg/io/output_format.hpp"
+#include "partreg/io/read_limits.hpp"
 #include "pcd_reader.hpp"
 #include "ply_format.hpp"
+#include "vtk_io.hpp"
 
 namespace partreg::io {
 namespace {
@@ -44,14 +48,24 @@ double read_scalar(std::istream& in, const std::string& type, PlyHeader::Format 
 
 bool is_integer_type(const std::string& type) { return type != "float" && type != "double"; }
 
-CloudFile read_ply_cloud(const std::filesystem::path& path) {
+// An integer property as ints: a value beyond int (a uint of 4e9, "1e300" or "nan" in an ASCII file) is
+// refused, since casting it would be undefined.
+Eigen::VectorXi checked_integers(const Eigen::VectorXd& values, const std::string& file, const std::string& name) {
+  for (Eigen::Index i = 0; i < values.size(); ++i)
+    if (!(std::abs(values[i]) <= 2147483647.0))
+      throw InputError(file + ": integer property '" + name + "' holds a value beyond the int range");
+  return values.cast<int>();
+}
+
+CloudFile read_ply_cloud(const std::filesystem::path& path, std::uint64_t file_size) {
   std::ifstream in(path, std::ios::binary);
   const std::string file = path.string();
-  const PlyHeader header = detail::read_ply_header(in, file);
+  const PlyHeader header = detail::read_checked_ply_header(in, file_size, file);
   if (header.elements.empty() || header.elements.front().name != "vertex")
     throw InputError(file + ": the first PLY element must be 'vertex'");
   const detail::PlyElement& vertex = header.elements.front();
   const auto n = static_cast<Eigen::Index>(vertex.count);
+  if (n == 0) throw InputError(file + " holds no points");
   std::map<std::string, Eigen::VectorXd> columns;
   for (const auto& property : vertex.properties) {
     if (property.is_list)
@@ -77,11 +91,33 @@ CloudFile read_ply_cloud(const std::filesystem::path& path) {
     static const std::set<std::string> geometry = {"x", "y", "z", "nx", "ny", "nz"};
     if (geometry.count(property.name) && (has_normals || property.name.size() == 1)) continue;
     if (is_integer_type(property.type))
-      result.attributes.integers[property.name] = columns[property.name].cast<int>();
+      result.attributes.integers[property.name] = checked_integers(columns[property.name], file, property.name);
     else
       result.attributes.reals[property.name] = columns[property.name];
   }
   return result;
+}
+
+// Columns 4-6 of an XYZ file are normals only when every row's are a unit vector; anything else (colours,
+// intensities) is kept as attributes, never silently dropped.
+void split_xyz_columns(const Eigen::MatrixXd& table, CloudFile& result) {
+  result.cloud.points = table.leftCols(3);
+  if (table.cols() == 3) return;
+  const Eigen::MatrixXd extra = table.rightCols(3);
+  const bool unit_rows = ((extra.rowwise().norm().array() - 1.0).abs() < 1e-3).all();
+  if (unit_rows) {
+    result.cloud.normals = extra;
+    return;
+  }
+  const bool bytes = (extra.array() == extra.array().round()).all() && extra.minCoeff() >= 0.0 &&
+                     extra.maxCoeff() <= 255.0;
+  const char* names[3] = {"red", "green", "blue"};
+  for (int c = 0; c < 3; ++c) {
+    if (bytes)
+      result.attributes.integers[names[c]] = extra.col(c).cast<int>();
+    else
+      result.attributes.reals[names[c]] = extra.col(c);
+  }
 }
 
 CloudFile read_xyz(const std::filesystem::path& path) {
@@ -108,13 +144,13 @@ CloudFile read_xyz(const std::filesystem::path& path) {
       throw InputError(path.string() + ":" + std::to_string(line_number) +
                        ": expected 3 or 6 numbers per line");
     values.insert(values.end(), row.begin(), row.end());
+    check_count(path.string(), "points", values.size() / columns, kReadBudget.max_points);
   }
   CloudFile result;
   const auto n = static_cast<Eigen::Index>(columns ? values.size() / columns : 0);
   const Eigen::Map<const Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>> table(
       values.data(), n, static_cast<Eigen::Index>(columns));
-  result.cloud.points = table.leftCols(std::min<Eigen::Index>(3, table.cols()));
-  if (columns == 6) result.cloud.normals = table.rightCols(3);
+  if (n > 0) split_xyz_columns(table, result);
   return result;
 }
 
@@ -135,41 +171,11 @@ void drop_non_finite(CloudFile& file, const std::string& name) {
   for (auto& [key, values] : file.attributes.reals) values = values(keep).eval();
 }
 
-}  // namespace
-
-CloudFile read_cloud_file(const std::filesystem::path& path) {
-  const std::string name = path.string();
-  if (!std::filesystem::is_regular_file(path)) throw InputError("no such file: " + name);
-  if (std::filesystem::file_size(path) == 0) throw InputError(name + " is empty");
-  const std::string extension = lower_extension(path);
-  CloudFile file;
-  if (extension == ".pcd")
-    file = detail::read_pcd(path);
-  else if (extension == ".ply")
-    file = read_ply_cloud(path);
-  else if (extension == ".xyz" || extension == ".txt")
-    file = read_xyz(path);
-  else
-    throw InputError(name + ": unknown point cloud extension '" + extension +
-                     "' (expected .pcd, .ply, .xyz, .txt)");
-  drop_non_finite(file, name);
-  return file;
-}
-
-void write_cloud_ply(const std::filesystem::path& path, const core::Cloud& cloud,
-                     const PointAttributes& attributes, bool binary) {
+// The PLY bytes of a cloud (binary little-endian or ASCII).
+void put_ply(std::ostream& out, const core::Cloud& cloud, const PointAttributes& attributes, bool binary) {
   const Eigen::Index n = cloud.points.rows();
   const bool normals = cloud.normals.rows() == n && n > 0;
-  for (const auto& [name, values] : attributes.integers)
-    if (values.size() != n)
-      throw UsageError("attribute '" + name + "' has " + std::to_string(values.size()) + " values for " +
-                       std::to_string(n) + " points");
-  for (const auto& [name, values] : attributes.reals)
-    if (values.size() != n)
-      throw UsageError("attribute '" + name + "' has " + std::to_string(values.size()) + " values for " +
-                       std::to_string(n) + " points");
-  write_atomically(path, [&](const std::filesystem::path& temporary) {
-    std::ofstream out(temporary, std::ios::binary);
+  {
     out << "ply\nformat " << (binary ? "binary_little_endian" : "ascii")
         << " 1.0\ncomment written by partreg\n"
         << "element vertex " << n << "\nproperty float x\nproperty float y\nproperty float z\n";
@@ -200,8 +206,81 @@ void write_cloud_ply(const std::filesystem::path& path, const core::Cloud& cloud
       for (const auto& entry : attributes.integers) put_int(entry.second[i], ++written == extra);
       for (const auto& entry : attributes.reals) put_float(entry.second[i], ++written == extra);
     }
+  }
+}
+
+void put_xyz(std::ostream& out, const core::Cloud& cloud) {
+  const bool normals = cloud.normals.rows() == cloud.points.rows();
+  out.precision(9);
+  for (Eigen::Index i = 0; i < cloud.points.rows(); ++i) {
+    out << cloud.points(i, 0) << ' ' << cloud.points(i, 1) << ' ' << cloud.points(i, 2);
+    if (normals) out << ' ' << cloud.normals(i, 0) << ' ' << cloud.normals(i, 1) << ' ' << cloud.normals(i, 2);
+    out << '\n';
+  }
+}
+
+void check_attribute_sizes(const core::Cloud& cloud, const PointAttributes& attributes) {
+  const Eigen::Index n = cloud.points.rows();
+  auto check = [n](const std::string& name, Eigen::Index size) {
+    if (size != n)
+      throw UsageError("attribute '" + name + "' has " + std::to_string(size) + " values for " +
+                       std::to_string(n) + " points");
+  };
+  for (const auto& [name, values] : attributes.integers) check(name, values.size());
+  for (const auto& [name, values] : attributes.reals) check(name, values.size());
+}
+
+CloudFile cloud_from_vtp(const std::filesystem::path& path) {
+  detail::PolyData data = detail::read_vtp(path);
+  if (data.points.rows() == 0) throw InputError(path.string() + " holds no points");
+  CloudFile file;
+  file.cloud.points = std::move(data.points);
+  file.cloud.normals = std::move(data.normals);
+  file.attributes = std::move(data.attributes);
+  return file;
+}
+
+}  // namespace
+
+CloudFile read_cloud_file(const std::filesystem::path& path) {
+  const std::string name = path.string();
+  const std::uint64_t size = checked_input_size(path);
+  const std::string extension = lower_extension(path);
+  CloudFile file;
+  if (extension == ".pcd")
+    file = detail::read_pcd(path, size);
+  else if (extension == ".ply")
+    file = read_ply_cloud(path, size);
+  else if (extension == ".xyz" || extension == ".txt")
+    file = read_xyz(path);
+  else if (extension == ".vtp")
+    file = cloud_from_vtp(path);
+  else
+    throw InputError(name + ": unknown point cloud extension '" + extension +
+                     "' (expected .pcd, .ply, .vtp, .xyz, .txt)");
+  drop_non_finite(file, name);
+  return file;
+}
+
+void write_cloud(const std::filesystem::path& path, const core::Cloud& cloud, const PointAttributes& attributes,
+                 PlyEncoding encoding) {
+  const FileFormat format = output_format(path, OutputKind::cloud);
+  check_attribute_sizes(cloud, attributes);
+  write_atomically(path, [&](const std::filesystem::path& temporary) {
+    std::ofstream out(temporary, std::ios::binary);
+    if (format == FileFormat::ply) put_ply(out, cloud, attributes, encoding == PlyEncoding::binary);
+    if (format == FileFormat::pcd) detail::write_pcd(out, cloud, attributes);
+    if (format == FileFormat::xyz) put_xyz(out, cloud);
+    if (format == FileFormat::vtp) detail::write_vtp(out, {cloud.points, cloud.normals, {}, attributes});
     if (!out.flush()) throw InputError("cannot write " + path.string());
   });
+}
+
+void write_cloud_ply(const std::filesystem::path& path, const core::Cloud& cloud,
+                     const PointAttributes& attributes, bool binary) {
+  if (output_format(path, OutputKind::cloud) != FileFormat::ply)
+    throw UsageError("cannot write PLY bytes to " + path.string() + ": its extension names another format");
+  write_cloud(path, cloud, attributes, binary ? PlyEncoding::binary : PlyEncoding::ascii);
 }
 
 }  // namespace partreg::io

@@ -13,18 +13,23 @@ std::vector<core::Frame> read_frames_file(const std::filesystem::path& path) {
   std::ifstream in(path);
   if (!in) throw InputError("cannot open frames file " + file);
   const nlohmann::json json = nlohmann::json::parse(in, nullptr, /*allow_exceptions=*/false);
-  if (json.is_discarded() || json.value("format", "") != "partreg-frames")
+  if (json.is_discarded() || !json.is_object() || !json.contains("format") || json.at("format") != "partreg-frames")
     throw InputError(file + " is not a partreg frames file");
-  if (json.value("version", -1) != 1) throw InputError(file + ": unsupported frames file version");
+  if (!json.contains("version") || json.at("version") != 1)
+    throw InputError(file + ": unsupported frames file version");
   std::vector<core::Frame> frames;
   try {
     for (const auto& entry : json.at("frames")) {
       core::Frame frame;
-      frame.name = entry.value("name", "frame " + std::to_string(frames.size()));
+      frame.name = entry.contains("name") ? entry.at("name").get<std::string>() : "frame " + std::to_string(frames.size());
       for (int i = 0; i < 3; ++i) {
         frame.position[i] = entry.at("position").at(i).get<double>();
         for (int j = 0; j < 3; ++j) frame.rotation(i, j) = entry.at("rotation").at(i).at(j).get<double>();
       }
+      // 1e308 is finite but overflows the first transform into infinity (written as JSON null).
+      if (!frame.position.allFinite() || frame.position.cwiseAbs().maxCoeff() > 1e12)
+        throw InputError(file + ": the position of frame '" + frame.name + "' is not a finite number of "
+                         "sensible size (|x| <= 1e12)");
       const double error = (frame.rotation.transpose() * frame.rotation - Eigen::Matrix3d::Identity()).norm();
       if (!(error < 1e-6) || frame.rotation.determinant() < 0.0)
         throw InputError(file + ": the rotation of frame '" + frame.name +

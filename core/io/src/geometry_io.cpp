@@ -8,16 +8,16 @@
 #include "partreg/io/cloud_io.hpp"
 #include "partreg/io/mesh_io.hpp"
 #include "ply_format.hpp"
+#include "vtk_io.hpp"
 
 namespace partreg::io {
 
 bool is_mesh_file(const std::filesystem::path& path) {
   const std::string extension = lower_extension(path);
   if (extension == ".pcd" || extension == ".xyz" || extension == ".txt") return false;
+  if (extension == ".vtp") return detail::read_vtp(path).faces.rows() > 0;
   if (extension != ".ply") return true;
-  if (!std::filesystem::is_regular_file(path)) throw InputError("no such file: " + path.string());
-  std::ifstream in(path, std::ios::binary);
-  return detail::read_ply_header(in, path.string()).count_of("face") > 0;
+  return detail::read_checked_ply_header(path).count_of("face") > 0;
 }
 
 core::Cloud read_as_cloud(const std::filesystem::path& path, std::size_t mesh_samples, std::uint64_t seed,

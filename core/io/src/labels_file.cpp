@@ -5,6 +5,7 @@
 #include <set>
 
 #include "partreg/core/errors.hpp"
+#include "json_values.hpp"
 #include "partreg/io/atomic_file.hpp"
 
 namespace partreg::io {
@@ -34,16 +35,26 @@ PartLabels read_labels_file(const std::filesystem::path& path) {
   std::ifstream in(path);
   if (!in) throw InputError("cannot open labels file " + file);
   const nlohmann::json json = nlohmann::json::parse(in, nullptr, /*allow_exceptions=*/false);
-  if (json.is_discarded() || !json.is_object()) throw InputError(file + " is not valid JSON");
-  if (json.value("format", "") != "partreg-labels") throw InputError(file + " is not a partreg labels file");
-  if (json.value("version", -1) != kLabelsFormatVersion)
-    throw InputError(file + " is labels format version " + std::to_string(json.value("version", -1)) +
+  if (json.is_discarded()) throw InputError(file + " is not valid JSON");
+  if (!json.is_object()) throw InputError(file + " is not a partreg labels file (not a JSON object)");
+  if (!json.contains("format") || json.at("format") != "partreg-labels")
+    throw InputError(file + " is not a partreg labels file");
+  if (!json.contains("version") || json.at("version") != kLabelsFormatVersion)
+    throw InputError(file + " is labels format version " + (json.contains("version") ? json.at("version").dump() : "?") +
                      "; this partreg reads version " + std::to_string(kLabelsFormatVersion));
   try {
     PartLabels labels;
     for (const auto& part : json.at("parts")) {
       labels.names.push_back(part.at("name").get<std::string>());
-      labels.colors.push_back(part.at("color").get<std::array<std::uint8_t, 3>>());
+      // Read as int: nlohmann would wrap 300 into a byte (44) silently.
+      const std::vector<int> color = detail::integers_of<int>(part.at("color"));
+      if (color.size() != 3) throw InputError(file + ": part '" + labels.names.back() + "' needs three colour channels");
+      for (int channel : color)
+        if (channel < 0 || channel > 255)
+          throw InputError(file + ": part '" + labels.names.back() + "' has a colour channel " +
+                           std::to_string(channel) + " outside 0..255");
+      labels.colors.push_back({static_cast<std::uint8_t>(color[0]), static_cast<std::uint8_t>(color[1]),
+                               static_cast<std::uint8_t>(color[2])});
     }
     if (std::set<std::string>(labels.names.begin(), labels.names.end()).size() != labels.names.size())
       throw InputError(file + " names a part twice");
@@ -51,9 +62,9 @@ PartLabels read_labels_file(const std::filesystem::path& path) {
     if (target != "faces" && target != "points")
       throw InputError(file + ": target must be 'faces' or 'points'");
     labels.target = target == "faces" ? PartLabels::Target::faces : PartLabels::Target::points;
-    labels.source = json.value("source", "");
-    const auto values = json.at("labels").get<std::vector<int>>();
-    if (json.at("count").get<std::size_t>() != values.size())
+    labels.source = json.contains("source") ? json.at("source").get<std::string>() : "";
+    const std::vector<int> values = detail::integers_of<int>(json.at("labels"));
+    if (!json.at("count").is_number_unsigned() || json.at("count").get<std::size_t>() != values.size())
       throw InputError(file + " says it has " + json.at("count").dump() + " labels but holds " +
                        std::to_string(values.size()));
     labels.labels =

@@ -2,11 +2,15 @@
 
 #include <cstring>
 #include <fstream>
+#include <iomanip>
+#include <set>
 #include <nlohmann/json.hpp>
 #include <sstream>
 
 #include "partreg/core/errors.hpp"
+#include "json_values.hpp"
 #include "partreg/io/atomic_file.hpp"
+#include "partreg/io/read_limits.hpp"
 
 namespace partreg::io {
 namespace {
@@ -26,6 +30,29 @@ std::string hex(std::uint64_t value) {
   std::ostringstream out;
   out << std::hex << value;
   return out.str();
+}
+
+// The header's own checksum: FNV-1a 64 of the header text with these 16 hex digits read as zeros, so any
+// language can check it on the bytes as stored.
+const std::string kHeaderChecksumKey = "\"header_fnv1a64\":\"";
+constexpr std::size_t kHeaderChecksumDigits = 16;
+
+std::string hex16(std::uint64_t value) {
+  std::ostringstream out;
+  out << std::hex << std::setw(kHeaderChecksumDigits) << std::setfill('0') << value;
+  return out.str();
+}
+
+// Where the checksum's digits start in `text`, or npos when the header has none (files written before it).
+std::size_t checksum_position(const std::string& text) {
+  const std::size_t found = text.find(kHeaderChecksumKey);
+  if (found == std::string::npos) return found;
+  return found + kHeaderChecksumKey.size();
+}
+
+std::string with_zero_checksum(std::string text, std::size_t position) {
+  text.replace(position, kHeaderChecksumDigits, std::string(kHeaderChecksumDigits, '0'));
+  return text;
 }
 
 // Collects arrays into one blob and describes them in the header's array table.
@@ -104,8 +131,11 @@ void write_model(const std::filesystem::path& path, const core::CategoryModel& m
       {"training", training_json(model.training)},
       {"spaces", spaces},
       {"arrays", arrays.table()},
-      {"blob_bytes", arrays.blob().size()}};
-  const std::string text = header.dump();
+      {"blob_bytes", arrays.blob().size()},
+      {"header_fnv1a64", std::string(kHeaderChecksumDigits, '0')}};
+  std::string text = header.dump();
+  const std::size_t checksum_at = checksum_position(text);
+  text.replace(checksum_at, kHeaderChecksumDigits, hex16(fnv1a64(text.data(), text.size())));
   write_atomically(path, [&](const std::filesystem::path& temporary) {
     std::ofstream out(temporary, std::ios::binary);
     const std::uint64_t length = text.size();
@@ -120,6 +150,8 @@ void write_model(const std::filesystem::path& path, const core::CategoryModel& m
 namespace {
 
 // Reads arrays back from the blob, checking shape, type and checksum of each.
+constexpr std::uint64_t kMaxExtent = 1ULL << 31;  // rows or columns of one array (Eigen::Index is signed)
+
 class ArrayReader {
  public:
   ArrayReader(const nlohmann::json& table, std::string blob, std::string file)
@@ -133,14 +165,22 @@ class ArrayReader {
     const auto found = entries_.find(name);
     if (found == entries_.end()) fail("has no array '" + name + "'");
     const nlohmann::json& entry = found->second;
-    const auto offset = entry.at("offset").get<std::size_t>();
-    const auto bytes = entry.at("bytes").get<std::size_t>();
-    const auto rows = entry.at("shape").at(0).get<Eigen::Index>();
-    const auto cols = entry.at("shape").at(1).get<Eigen::Index>();
+    const std::uint64_t offset = count_at(entry, "offset", name);
+    const std::uint64_t bytes = count_at(entry, "bytes", name);
+    const std::uint64_t rows = count_at(entry.at("shape"), 0, name);
+    const std::uint64_t cols = count_at(entry.at("shape"), 1, name);
     const bool dtype_ok = entry.at("dtype") == (std::is_same_v<Scalar, double> ? "f64" : "i32");
-    if (!dtype_ok || rows < 0 || cols < 0 || bytes != static_cast<std::size_t>(rows * cols) * sizeof(Scalar))
+    // Divisions, not products: values from the header must not wrap around the checks meant for them.
+    const std::uint64_t elements = bytes / sizeof(Scalar);
+    if (!dtype_ok || bytes % sizeof(Scalar) != 0 || (rows != 0 && cols != elements / rows) ||
+        (rows == 0 && elements != 0) || (rows != 0 && elements % rows != 0) || rows > kMaxExtent ||
+        cols > kMaxExtent)
       fail("array '" + name + "' has an unexpected type or shape");
-    if (offset + bytes > blob_.size())
+    // A column count fixed by the type (points are N x 3, vectors N x 1) must be the file's.
+    if (Matrix::ColsAtCompileTime != Eigen::Dynamic && cols != static_cast<std::uint64_t>(Matrix::ColsAtCompileTime))
+      fail("array '" + name + "' has " + std::to_string(cols) + " columns, not " +
+           std::to_string(Matrix::ColsAtCompileTime));
+    if (offset > blob_.size() || bytes > blob_.size() - offset)
       fail("is truncated (array '" + name + "' runs past the end of the file)");
     if (hex(fnv1a64(blob_.data() + offset, bytes)) != entry.at("fnv1a64").get<std::string>())
       fail("is corrupted (checksum of array '" + name + "' does not match)");
@@ -153,11 +193,35 @@ class ArrayReader {
     throw InputError("model file " + file_ + " " + what);
   }
 
+  // A size or an offset: a non-negative integer (nlohmann would wrap a negative one into a huge size_t).
+  template <typename Key>
+  std::uint64_t count_at(const nlohmann::json& json, const Key& key, const std::string& name) const {
+    const nlohmann::json& value = json.at(key);
+    if (!value.is_number_unsigned()) fail("array '" + name + "' has a negative or non-integer size or offset");
+    return value.get<std::uint64_t>();
+  }
+
  private:
   std::string blob_;
   std::string file_;
   std::map<std::string, nlohmann::json> entries_;
 };
+
+// Every member the header may have: a bit flipped in a name (the checksum's own included) is damage.
+void check_header_checksum(const nlohmann::json& header, const std::string& text, const std::string& file) {
+  static const std::set<std::string> known = {"format", "format_version", "partreg_version", "category",
+                                              "normalization", "part_names", "training", "spaces", "arrays",
+                                              "blob_bytes", "header_fnv1a64"};
+  for (const auto& member : header.items())
+    if (!known.count(member.key()))
+      throw InputError("model file " + file + " is damaged (unknown header member '" + member.key() + "')");
+  const std::size_t position = checksum_position(text);
+  if (!header.contains("header_fnv1a64") && position == std::string::npos) return;  // written before checksums
+  if (position == std::string::npos || position + kHeaderChecksumDigits > text.size() ||
+      text.substr(position, kHeaderChecksumDigits) != hex16(fnv1a64(with_zero_checksum(text, position).data(),
+                                                                    text.size())))
+    throw InputError("model file " + file + " is corrupted (checksum of its header does not match)");
+}
 
 nlohmann::json read_header(std::ifstream& in, const std::string& file, std::uint64_t file_size) {
   char magic[sizeof kMagic] = {};
@@ -171,14 +235,15 @@ nlohmann::json read_header(std::ifstream& in, const std::string& file, std::uint
   in.read(text.data(), static_cast<std::streamsize>(length));
   if (!in) throw InputError("model file " + file + " is truncated (in its header)");
   nlohmann::json header = nlohmann::json::parse(text, nullptr, /*allow_exceptions=*/false);
-  if (header.is_discarded() || header.value("format", "") != "partreg-model")
+  if (header.is_discarded() || !header.is_object() || header.value("format", "") != "partreg-model")
     throw InputError(file + " is not a partreg model file (unreadable header)");
-  const int version = header.value("format_version", -1);
+  const int version = header["format_version"].is_number_integer() ? header["format_version"].get<int>() : -1;
   if (version != kModelFormatVersion)
     throw InputError("model file " + file + " has format version " + std::to_string(version) +
                      " (written by partreg " + header.value("partreg_version", std::string("?")) +
                      "); this partreg " + PARTREG_VERSION + " reads version " +
                      std::to_string(kModelFormatVersion) + ": retrain the model");
+  check_header_checksum(header, text, file);
   return header;
 }
 
@@ -187,12 +252,12 @@ core::TrainingRecord training_from_json(const nlohmann::json& json) {
   record.instances = json.at("instances").get<std::vector<std::string>>();
   record.canonical = json.at("canonical").get<std::string>();
   record.canonical_choice = json.at("canonical_choice").get<std::string>();
-  record.canonical_points = json.at("canonical_points").get<int>();
+  record.canonical_points = detail::integer_of<int>(json.at("canonical_points"));
   record.beta = json.at("beta").get<double>();
   record.lambda = json.at("lambda").get<double>();
   record.outlier_weight = json.at("outlier_weight").get<double>();
-  record.latent_dimensions = json.at("latent_dimensions").get<int>();
-  record.seed = json.at("seed").get<std::uint64_t>();
+  record.latent_dimensions = detail::integer_of<int>(json.at("latent_dimensions"));
+  record.seed = detail::integer_of<std::uint64_t>(json.at("seed"));
   return record;
 }
 
@@ -241,22 +306,23 @@ core::CategoryModel model_from(const nlohmann::json& header, const ArrayReader& 
 
 core::CategoryModel read_model(const std::filesystem::path& path) {
   const std::string file = path.string();
-  std::error_code error;
-  const auto file_size = std::filesystem::file_size(path, error);
-  if (error) throw InputError("cannot read model file " + file + ": " + error.message());
+  const std::uint64_t file_size = checked_input_size(path);
   std::ifstream in(path, std::ios::binary);
   if (!in) throw InputError("cannot open model file " + file);
-  const nlohmann::json header = read_header(in, file, file_size);
-  const auto blob_bytes = header.value("blob_bytes", std::uint64_t{0});
-  const auto start = static_cast<std::uint64_t>(in.tellg());
-  if (start + blob_bytes != file_size)
-    throw InputError("model file " + file + " is " +
-                     (start + blob_bytes > file_size ? "truncated" : "damaged") + ": expected " +
-                     std::to_string(start + blob_bytes) + " bytes, found " + std::to_string(file_size));
-  std::string blob(blob_bytes, '\0');
-  in.read(blob.data(), static_cast<std::streamsize>(blob_bytes));
-  const ArrayReader arrays(header.at("arrays"), std::move(blob), file);
   try {
+    const nlohmann::json header = read_header(in, file, file_size);
+    const nlohmann::json& blob_entry = header.at("blob_bytes");
+    if (!blob_entry.is_number_unsigned()) throw InputError("model file " + file + " has a malformed blob size");
+    const auto blob_bytes = blob_entry.get<std::uint64_t>();
+    const auto start = static_cast<std::uint64_t>(in.tellg());
+    if (start > file_size || blob_bytes != file_size - start)
+      throw InputError("model file " + file + " is " + (blob_bytes > file_size - start ? "truncated" : "damaged") +
+                       ": its header describes " + std::to_string(blob_bytes) + " bytes of arrays, the file holds " +
+                       std::to_string(file_size - start));
+    std::string blob(blob_bytes, '\0');
+    in.read(blob.data(), static_cast<std::streamsize>(blob_bytes));
+    if (!header.at("arrays").is_array()) throw InputError("model file " + file + " has a malformed array table");
+    const ArrayReader arrays(header.at("arrays"), std::move(blob), file);
     core::CategoryModel model = model_from(header, arrays);
     model.validate();
     return model;

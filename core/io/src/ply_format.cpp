@@ -1,9 +1,12 @@
 #include "ply_format.hpp"
 
+#include <fstream>
 #include <map>
 #include <sstream>
 
+#include "header_lines.hpp"
 #include "partreg/core/errors.hpp"
+#include "partreg/io/read_limits.hpp"
 
 namespace partreg::io::detail {
 namespace {
@@ -36,12 +39,12 @@ std::size_t ply_type_size(const std::string& type) {
 
 PlyHeader read_ply_header(std::istream& in, const std::string& file) {
   std::string line;
-  if (!std::getline(in, line) || line.rfind("ply", 0) != 0)
+  std::uint64_t budget = kReadBudget.max_header_bytes;
+  if (!read_header_line(in, line, budget, file) || line.rfind("ply", 0) != 0)
     throw InputError(file + " is not a PLY file (no 'ply' magic)");
   PlyHeader header;
   bool has_format = false;
-  while (std::getline(in, line)) {
-    if (!line.empty() && line.back() == '\r') line.pop_back();
+  while (read_header_line(in, line, budget, file)) {
     std::istringstream words(line);
     std::string keyword;
     words >> keyword;
@@ -67,6 +70,10 @@ PlyHeader read_ply_header(std::istream& in, const std::string& file) {
       words >> element.name >> count;
       if (!words || count < 0) throw InputError(file + ": malformed PLY element line '" + line + "'");
       element.count = static_cast<std::size_t>(count);
+      const bool faces = element.name == "face";
+      check_count(file, faces ? "faces" : element.name == "vertex" ? "vertices" : element.name + " elements",
+                  element.count,
+                  faces ? kReadBudget.max_faces : kReadBudget.max_points);
       header.elements.push_back(element);
     } else if (keyword == "property") {
       if (header.elements.empty()) throw InputError(file + ": PLY property before any element");
@@ -77,6 +84,7 @@ PlyHeader read_ply_header(std::istream& in, const std::string& file) {
         std::string count_type, item_type;
         words >> count_type >> item_type >> property.name;
         property.is_list = true;
+        property.count_type = normalised_type(count_type, file);
         property.type = normalised_type(item_type, file);
       } else {
         words >> property.name;
@@ -84,10 +92,55 @@ PlyHeader read_ply_header(std::istream& in, const std::string& file) {
       }
       if (property.name.empty()) throw InputError(file + ": malformed PLY property line '" + line + "'");
       header.elements.back().properties.push_back(property);
+    } else if (keyword != "comment" && keyword != "obj_info" && !keyword.empty()) {
+      // assimp aborts on some lines it does not know: the PLY grammar has no others.
+      throw InputError(file + ": unknown PLY header line '" + line.substr(0, 40) + "' (is end_header missing?)");
     }
-    // comment, obj_info and unknown lines are ignored
   }
   throw InputError(file + ": PLY header has no end_header (truncated file?)");
+}
+
+void check_ply_body_fits(const PlyHeader& header, std::uint64_t available, const std::string& file) {
+  const bool ascii = header.format == PlyHeader::Format::ascii;
+  std::uint64_t used = 0;
+  for (const PlyElement& element : header.elements) {
+    std::uint64_t bytes_each = 0;  // an empty list still has its length
+    for (const PlyProperty& property : element.properties)
+      bytes_each += ascii ? 2 : ply_type_size(property.is_list ? property.count_type : property.type);
+    check_fits(file, element.name == "vertex" ? "vertices" : element.name + " elements", element.count,
+               bytes_each, available - used);
+    used += element.count * bytes_each;  // fits: the check above bounds it by available
+  }
+}
+
+PlyHeader read_checked_ply_header(std::istream& in, std::uint64_t file_size, const std::string& file) {
+  const PlyHeader header = read_ply_header(in, file);
+  const auto start = static_cast<std::uint64_t>(in.tellg());
+  if (start > file_size) throw InputError(file + " is truncated (in its PLY header)");
+  // ASCII files may end without a newline after their last value.
+  const std::uint64_t slack = header.format == PlyHeader::Format::ascii ? 1 : 0;
+  check_ply_body_fits(header, file_size - start + slack, file);
+  return header;
+}
+
+PlyHeader read_checked_ply_header(const std::filesystem::path& path) {
+  const std::uint64_t size = checked_input_size(path);
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw InputError("cannot open " + path.string());
+  return read_checked_ply_header(in, size, path.string());
+}
+
+void check_ply_mesh_header(const PlyHeader& header, const std::string& file) {
+  for (const PlyElement& element : header.elements) {
+    if (element.name != "vertex") continue;
+    for (const char* axis : {"x", "y", "z"}) {
+      bool found = false;
+      for (const PlyProperty& property : element.properties) found |= property.name == axis && !property.is_list;
+      if (!found) throw InputError(file + ": PLY vertices have no '" + axis + "' property");
+    }
+    return;
+  }
+  throw InputError(file + ": PLY file has no vertex element");
 }
 
 }  // namespace partreg::io::detail

@@ -1,6 +1,7 @@
 #pragma once
 // PLY header parsing shared by the cloud reader and the mesh-or-cloud test (internal to partreg_io).
 
+#include <cstdint>
 #include <filesystem>
 #include <istream>
 #include <string>
@@ -12,6 +13,7 @@ struct PlyProperty {
   std::string name;
   std::string type;  ///< scalar type, normalised to char/uchar/short/ushort/int/uint/float/double
   bool is_list = false;
+  std::string count_type;  ///< type of a list's length (lists only)
 };
 
 struct PlyElement {
@@ -26,8 +28,23 @@ struct PlyHeader {
   std::size_t count_of(const std::string& element) const;
 };
 
-/// Parses the header and leaves `in` at the first byte of the data. Throws InputError naming `file`.
+/// Parses the header and leaves `in` at the first byte of the data. Throws InputError naming `file` for a
+/// malformed header, one without end_header, or counts beyond the reading budget (read_limits.hpp).
 PlyHeader read_ply_header(std::istream& in, const std::string& file);
+
+/// Checks that the elements the header declares can fit into the `available` bytes after it (each value
+/// takes at least its binary size, or two characters in ASCII). InputError naming `file` otherwise.
+void check_ply_body_fits(const PlyHeader& header, std::uint64_t available, const std::string& file);
+
+/// Reads the header from `in` (a file of `file_size` bytes) and checks its counts against that size; leaves
+/// `in` at the first byte of the data.
+PlyHeader read_checked_ply_header(std::istream& in, std::uint64_t file_size, const std::string& file);
+
+/// A mesh's header (before assimp reads the file): a vertex element with scalar x, y and z.
+void check_ply_mesh_header(const PlyHeader& header, const std::string& file);
+
+/// Reads the header of the PLY file `path` and checks its counts against the file's size.
+PlyHeader read_checked_ply_header(const std::filesystem::path& path);
 
 /// Size in bytes of a PLY scalar type.
 std::size_t ply_type_size(const std::string& type);

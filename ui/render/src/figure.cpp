@@ -84,8 +84,14 @@ Image render_grid(const Grid& grid, const FigureSettings& settings) {
   const int top = grid.column_labels.empty() ? 0 : text_line_height(scale) + kGap;
   const Rgba8 paper =
       settings.background == Background::white ? Rgba8{255, 255, 255, 255} : Rgba8{255, 255, 255, 0};
-  Image canvas(left + columns * settings.panel_width + (columns - 1) * kGap,
-               top + rows * settings.panel_height + (rows - 1) * kGap, paper);
+  const long long width = left + static_cast<long long>(columns) * settings.panel_width + (columns - 1) * kGap;
+  const long long height = top + static_cast<long long>(rows) * settings.panel_height + (rows - 1) * kGap;
+  // The whole canvas is allocated at once: a clear refusal beats std::bad_alloc.
+  constexpr long long kMaxCanvasPixels = 256LL << 20;
+  if (width > 65535 || height > 65535 || width * height > kMaxCanvasPixels)
+    throw UsageError("a figure of " + std::to_string(width) + "x" + std::to_string(height) +
+                     " pixels is too large (at most 256 megapixels, 65535 a side): choose a smaller --size");
+  Image canvas(static_cast<int>(width), static_cast<int>(height), paper);
 
   RenderSettings render_settings;
   render_settings.width = settings.panel_width;

@@ -20,6 +20,7 @@
 #include "partreg/io/geometry_io.hpp"
 #include "partreg/io/model_file.hpp"
 #include "partreg/io/result_file.hpp"
+#include "partreg/io/views_file.hpp"
 #include "partreg/ui/labelling.hpp"
 #include "partreg/ui/tools.hpp"
 
@@ -92,29 +93,12 @@ Outcome load_model(AppState& state, const std::string& path) {
                  std::to_string(model->spaces.size()) + " spaces)");
 }
 
-// `partreg views` lists each view's file and viewpoint in views.json beside it.
-std::optional<Eigen::Vector3d> viewpoint_from_listing(const std::filesystem::path& cloud) {
-  const std::filesystem::path listing = cloud.parent_path() / "views.json";
-  if (!std::filesystem::exists(listing)) return std::nullopt;
-  try {
-    const nlohmann::json views = nlohmann::json::parse(std::ifstream(listing)).at("views");
-    for (const nlohmann::json& view : views)
-      if (view.at("file").get<std::string>() == cloud.filename().string()) {
-        const std::vector<double> xyz = view.at("viewpoint").get<std::vector<double>>();
-        if (xyz.size() == 3) return Eigen::Vector3d(xyz[0], xyz[1], xyz[2]);
-      }
-  } catch (const nlohmann::json::exception&) {
-    // Not our listing: the observation simply has no known viewpoint.
-  }
-  return std::nullopt;
-}
-
 Outcome load_observed(AppState& state, const std::string& path, int mesh_points) {
   if (mesh_points < 10) throw UsageError("points= must be at least 10");
   core::Cloud cloud = io::read_as_cloud(path, static_cast<std::size_t>(mesh_points), 1);
   state.registration.observed_path = path;
   state.registration.observed = std::move(cloud.points);
-  state.registration.viewpoint = viewpoint_from_listing(path);
+  state.registration.viewpoint = io::viewpoint_from_listing(path);  // views.json beside it, when there is one
   state.registration.result.reset();
   state.registration.step = -1;
   state.mode = Mode::registration;

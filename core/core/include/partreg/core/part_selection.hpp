@@ -23,8 +23,8 @@ struct SphereSelector {
 };
 using PartSelector = std::variant<BoxSelector, PlaneSelector, SphereSelector>;
 
-/// `count` comma-separated finite numbers ("0.1,2,-3"); UsageError naming `what` (what the numbers are, or
-/// the flag that carried them) for a wrong count or a non-number.
+/// `count` comma-separated finite numbers of sensible size (|x| <= 1e12, "0.1,2,-3"); UsageError naming `what`
+/// (what the numbers are, or the flag that carried them) for a wrong count or anything else.
 std::vector<double> parse_numbers(const std::string& text, std::size_t count, const std::string& what);
 /// Three comma-separated numbers as a point or a direction ("x,y,z").
 Eigen::Vector3d parse_vector3(const std::string& text, const std::string& what);

@@ -1,7 +1,10 @@
 #pragma once
 /// \file
-/// Every file partreg writes goes through here: written under a temporary name in the destination's folder,
-/// then renamed into place, so a failure or a crash never leaves a half-written output behind.
+/// Every file partreg writes goes through here. A regular file or a new path is written under a hidden
+/// temporary name in its folder (".NAME.partial-PID-N") and renamed into place, so a failure or a crash never
+/// leaves a half-written output behind; temporaries of killed runs are removed on the next write to the same
+/// place. A device, a FIFO or "-" (stdout) is written directly: renaming over /dev/null would replace the
+/// device. A symbolic link is followed to the file it names.
 
 #include <filesystem>
 #include <functional>
@@ -9,8 +12,19 @@
 
 namespace partreg::io {
 
-/// Calls writer(temporary) and renames the temporary onto `destination`. If the writer throws, the temporary
-/// is removed and the exception propagates; the destination is untouched.
+/// Where the bytes for a destination go.
+struct OutputTarget {
+  std::filesystem::path path;  ///< the file to write: symbolic links followed, "-" as /dev/stdout
+  bool direct = false;         ///< true for a device, FIFO or stdout: written in place, never renamed over
+};
+
+/// Resolves `destination` as write_atomically does. InputError naming it for a folder, a missing parent
+/// folder or a loop of symbolic links; so commands call it on every output before they start.
+OutputTarget resolve_output(const std::filesystem::path& destination);
+
+/// Calls writer(temporary) and renames the temporary onto `destination` (or calls writer(destination) for a
+/// direct target). If the writer throws, the temporary is removed and the exception propagates; the
+/// destination is untouched. File-system errors become an InputError naming `destination`.
 void write_atomically(const std::filesystem::path& destination,
                       const std::function<void(const std::filesystem::path& temporary)>& writer);
 

@@ -9,8 +9,8 @@
 
 namespace partreg::io {
 
-/// True for mesh files: OBJ, STL, OFF, glTF/GLB, ... and PLY files whose header declares faces.
-/// PCD, XYZ, TXT and face-less PLY are clouds.
+/// True for mesh files: OBJ, STL, OFF, glTF/GLB, ..., PLY files whose header declares faces and .vtp files
+/// holding polygons. PCD, XYZ, TXT, face-less PLY and .vtp are clouds.
 bool is_mesh_file(const std::filesystem::path& path);
 
 /// A cloud file as read (NaN points dropped, counted in `dropped_non_finite` when given), or a mesh sampled

@@ -1,23 +1,29 @@
 #pragma once
 /// \file
-/// Triangle meshes: reading every format assimp reads (OBJ, PLY, STL, OFF, glTF/GLB, ...), writing OBJ and
-/// PLY.
+/// Triangle meshes: reading every format assimp reads (OBJ, PLY, STL, glTF/GLB, ...; PLY headers checked by
+/// partreg first, every index checked), OFF (partreg's own reader) and .vtp (VTK); writing OBJ, PLY and .vtp.
 
 #include <Eigen/Core>
 #include <filesystem>
 
 #include "partreg/core/types.hpp"
+#include "partreg/io/cloud_io.hpp"
 
 namespace partreg::io {
 
 /// Reads a mesh: all meshes of the file merged with their node transforms, triangulated, identical vertices
 /// joined, degenerate faces dropped. Throws InputError for a missing file, a format assimp cannot read, or a
-/// file without faces ("... is a point cloud").
+/// file without faces ("... is a point cloud"), a face referring to a vertex that does not exist, or counts
+/// beyond the file's size or the reading budget (read_limits.hpp).
 core::Mesh read_mesh(const std::filesystem::path& path);
 
-/// Writes .obj or .ply (by extension; UsageError otherwise), atomically. PLY gets an int `part` vertex
-/// property when `vertex_part` is given (one value per vertex).
+/// Writes .obj, .ply or .vtp (by extension, output_format.hpp; UsageError otherwise), as atomic_file.hpp
+/// says. PLY gets an int `part` vertex property when `vertex_part` is given (one value per vertex), .vtp a
+/// `part` point array.
 void write_mesh(const std::filesystem::path& path, const core::Mesh& mesh,
                 const Eigen::VectorXi* vertex_part = nullptr);
+
+/// write_mesh() with any per-vertex arrays: all of them go to a .vtp file; PLY keeps `part`; OBJ none.
+void write_mesh(const std::filesystem::path& path, const core::Mesh& mesh, const PointAttributes& attributes);
 
 }  // namespace partreg::io
