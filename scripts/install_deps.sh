@@ -9,6 +9,7 @@ packages=(
   libgtest-dev libgmock-dev libbenchmark-dev
   libembree-dev libtbb-dev libcairo2-dev libstb-dev
   libosmesa6-dev libglfw3-dev libimgui-dev python3-glad xvfb xauth
+  parallel
 )
 missing=()
 for package in "${packages[@]}"; do
