@@ -113,7 +113,7 @@ run() {
   local status=ok
   rm -f "$output"
   /usr/bin/time -f '%U %S %e %M' -o "$work/time.txt" timeout "$timeout_s" "$@" >"$work/log.txt" 2>&1 || status=failed
-  grep -q 'Command terminated by signal\|exit status 124' "$work/time.txt" && status=timeout
+  grep -q 'Command terminated by signal\|status 124' "$work/time.txt" && status=timeout
   [ "$(wc -l < "$work/time.txt")" -gt 1 ] && [ "$status" = ok ] && status=failed
   read -r user sys wall peak < <(tail -1 "$work/time.txt")
   echo "$name $n $(printf "%.2f" "$(echo "$user + $sys" | bc)") $wall $((peak / 1024)) $status $output" >> "$results"
