@@ -10,6 +10,7 @@ packages=(
   libembree-dev libtbb-dev libcairo2-dev libstb-dev
   libosmesa6-dev libglfw3-dev libimgui-dev python3-glad xvfb xauth
   clang-14 libclang-rt-14-dev
+  parallel
 )
 missing=()
 for package in "${packages[@]}"; do

@@ -6,27 +6,28 @@
 
 namespace partreg::core::detail {
 
-double dense_posterior_sums(const float* sx, const float* sy, const float* sz, std::ptrdiff_t m,
-                            const double* target, std::ptrdiff_t begin, std::ptrdiff_t end, float scale,
-                            double c, float* work, float* p1, float* px, float* py, float* pz, double* pt1) {
+double dense_posterior_sums(const float* sx, const float* sy, const float* sz, const float* sw, std::ptrdiff_t m,
+                            const double* target, const double* tw, std::ptrdiff_t count, float scale, double c,
+                            float* work, float* p1, float* px, float* py, float* pz, double* mass) {
   using Array = Eigen::Map<Eigen::ArrayXf>;
   using ConstArray = Eigen::Map<const Eigen::ArrayXf>;
-  const ConstArray mx(sx, m), my(sy, m), mz(sz, m);
+  const ConstArray mx(sx, m), my(sy, m), mz(sz, m), weight(sw, m);
   Array k(work, m), a1(p1, m), ax(px, m), ay(py, m), az(pz, m);
   double log_sum = 0.0;
-  for (std::ptrdiff_t n = begin; n < end; ++n) {
+  // Floored: with w = 0 a target point far from every source point would otherwise divide by zero.
+  const double floor = std::max(c, 1e-300);
+  for (std::ptrdiff_t n = 0; n < count; ++n) {
     const auto x = static_cast<float>(target[3 * n]), y = static_cast<float>(target[3 * n + 1]),
                z = static_cast<float>(target[3 * n + 2]);
     k = (((mx - x).square() + (my - y).square() + (mz - z).square()) * scale).exp();
-    // Floored: with w = 0 a target point far from every source point would otherwise divide by zero.
-    const double denominator = std::max(static_cast<double>(k.sum()) + c, 1e-300);
-    k *= static_cast<float>(1.0 / denominator);
+    const double denominator = static_cast<double>((k * weight).sum()) + floor;
+    k *= static_cast<float>(tw[n] / denominator);
     a1 += k;
     ax += k * x;
     ay += k * y;
     az += k * z;
-    pt1[n] = static_cast<double>(k.sum());
-    log_sum += std::log(denominator);
+    mass[n] = 1.0 - floor / denominator;
+    log_sum += tw[n] * std::log(denominator);
   }
   return log_sum;
 }

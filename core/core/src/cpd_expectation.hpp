@@ -13,26 +13,40 @@ struct Expectation {
   Points PX;                             ///< P X: posterior-weighted target per source point (M x 3)
   double Np = 0.0;                       ///< total mass, 1^T P 1
   double negative_log_likelihood = 0.0;  ///< up to a constant; its relative change stops EM
+  double cell_edge = 0.0;                ///< edge of the cells the fast path merged points into (0: none)
 };
 
-/// One E-step for the current source positions `moved` against `target` with variance sigma2 and outlier
-/// weight w. With `truncation` > 0, kernel values below it are skipped by a KD-tree radius search (only
-/// worth it once sigma is small against the set; `use_truncation` decides that). The dense path computes
-/// kernel values in float unless `precise`.
-Expectation expectation(const Points& moved, const Points& target, double sigma2, double outlier_weight,
-                        int threads, double truncation = 0.0, bool precise = false);
+/// How an E-step is computed.
+struct EStepSettings {
+  double outlier_weight = 0.1;  ///< w in [0, 1)
+  int threads = 0;              ///< 0 = all cores
+  /// Every source-target pair in double precision: the reference the fast path is tested against.
+  bool exact = false;
+  /// Fast path: kernel values below this are skipped (a KD-tree radius search of sqrt(2 ln(1/t)) sigma).
+  double truncation = 1e-8;
+  /// Fast path: points sharing a voxel cell of this edge, in units of sigma, are merged into one weighted
+  /// point at their centroid (on both sides). The kernel then changes by O(edge^2 / 12) relatively, and the
+  /// first-order errors cancel in the M-steps' sums; 0 keeps every point on its own.
+  double cell_size = 0.25;
+};
+
+/// One E-step for the current source positions `moved` against `target` with variance sigma2. The fast
+/// path's work follows the points that matter: cells of a size tied to sigma (few while sigma is large)
+/// and only the neighbours within the truncation radius (few once sigma is small).
+Expectation expectation(const Points& moved, const Points& target, double sigma2,
+                        const EStepSettings& settings);
 
 /// The classic initial variance: mean squared distance over all source-target pairs, divided by 3.
 double initial_sigma2(const Points& source, const Points& target);
-
-/// Whether a truncated E-step pays off: the truncation radius is small against the source's extent.
-bool use_truncation(const Points& moved, double sigma2, double truncation);
 
 /// Validates a point set for CPD, naming it in the message ("source", "target").
 void check_cpd_points(const Points& points, const char* name);
 
 /// Validates w and the tolerance.
 void check_cpd_common(double outlier_weight, double tolerance, int max_iterations);
+
+/// Validates the fast E-step's truncation (0, 1) and cell size [0, 1] sigma.
+void check_fast_e_step(double truncation, double cell_size);
 
 }  // namespace partreg::core::detail
 
@@ -44,12 +58,9 @@ namespace partreg::core::detail {
 
 /// What every CPD variant's EM loop needs to know.
 struct EmControl {
-  double outlier_weight = 0.1;
+  EStepSettings e_step;
   double tolerance = 1e-6;
   int max_iterations = 150;
-  int threads = 0;
-  double truncation = 0.0;  ///< 0 = always dense
-  bool precise = false;     ///< double-precision dense E-step (the exact non-rigid path)
 };
 
 struct EmOutcome {

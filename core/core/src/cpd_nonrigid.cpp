@@ -49,7 +49,18 @@ void check_settings(const NonrigidCpdSettings& s) {
   if (!(s.beta > 0.0)) throw UsageError("CPD beta must be positive, got " + std::to_string(s.beta));
   if (!(s.lambda > 0.0)) throw UsageError("CPD lambda must be positive, got " + std::to_string(s.lambda));
   if (s.kernel_rank < 0) throw UsageError("the kernel rank must be 0 (automatic) or positive");
+  detail::check_fast_e_step(s.truncation, s.cell_size);
   detail::check_cpd_common(s.outlier_weight, s.tolerance, s.max_iterations);
+}
+
+// G(z, source) W over the source rows whose weight is not zero only: the fast solver's field has weights on
+// its landmarks alone, so this costs z x landmarks instead of z x M.
+Points field_at(const Points& z, const Points& source, const Points& weights, double beta) {
+  std::vector<int> rows;
+  for (Eigen::Index m = 0; m < weights.rows(); ++m)
+    if (weights.row(m).squaredNorm() > 0.0) rows.push_back(static_cast<int>(m));
+  if (rows.empty()) return Points::Zero(z.rows(), 3);
+  return apply_kernel(z, select_rows(source, rows), select_rows(weights, rows), beta);
 }
 
 bool use_fast_solver(const NonrigidCpdSettings& s, Eigen::Index source_points) {
@@ -62,7 +73,7 @@ bool use_fast_solver(const NonrigidCpdSettings& s, Eigen::Index source_points) {
 Points NonrigidCpdResult::displacement_at(const Points& z) const {
   const Points working = normalization.apply(z);
   const Points working_source = normalization.apply(source);
-  return apply_kernel(working, working_source, weights, beta) * normalization.scale;
+  return field_at(working, working_source, weights, beta) * normalization.scale;
 }
 
 NonrigidCpdResult register_nonrigid(const Points& source_in, const Points& target_in,
@@ -88,12 +99,13 @@ NonrigidCpdResult register_nonrigid(const Points& source_in, const Points& targe
   Points weights = Points::Zero(m, 3);
   Points moved = source;
   detail::EmControl control;
-  control.outlier_weight = settings.outlier_weight;
+  control.e_step.outlier_weight = settings.outlier_weight;
+  control.e_step.threads = settings.threads;
+  control.e_step.exact = !fast || settings.exact_e_step;
+  control.e_step.truncation = settings.truncation;
+  control.e_step.cell_size = settings.cell_size;
   control.tolerance = settings.tolerance;
   control.max_iterations = settings.max_iterations;
-  control.threads = settings.threads;
-  control.truncation = fast ? settings.truncation : 0.0;
-  control.precise = !fast;
   const auto outcome =
       detail::run_em(target, moved, control, [&](const detail::Expectation& e, double sigma2) {
         const double regulariser = settings.lambda * sigma2;
@@ -125,7 +137,7 @@ NonrigidCpdResult register_nonrigid(const Points& source_in, const Points& targe
   result.weights = weights;
   result.beta = settings.beta;
   result.source = source_in;
-  result.moved = result.normalization.undo(source + apply_kernel(source, source, weights, settings.beta));
+  result.moved = result.normalization.undo(source + field_at(source, source, weights, settings.beta));
   result.sigma2 = outcome.sigma2;
   result.iterations = outcome.iterations;
   result.stop_reason = outcome.stop_reason;

@@ -30,13 +30,16 @@ Moments moments(const detail::Expectation& e, const Points& source, const Points
   return m;
 }
 
-detail::EmControl control_of(double w, double tolerance, int max_iterations, int threads) {
+template <typename Settings>
+detail::EmControl control_of(const Settings& settings) {
   detail::EmControl control;
-  control.outlier_weight = w;
-  control.tolerance = tolerance;
-  control.max_iterations = max_iterations;
-  control.threads = threads;
-  control.truncation = 1e-8;  // rigid fits shrink sigma fast: truncation takes over the late iterations
+  control.e_step.outlier_weight = settings.outlier_weight;
+  control.e_step.threads = settings.threads;
+  control.e_step.exact = settings.exact_e_step;
+  control.e_step.truncation = settings.truncation;
+  control.e_step.cell_size = settings.cell_size;
+  control.tolerance = settings.tolerance;
+  control.max_iterations = settings.max_iterations;
   return control;
 }
 
@@ -55,12 +58,12 @@ Normalization run_linear_cpd(const Points& source_in, const Points& target_in, c
   detail::check_cpd_points(source_in, "source");
   detail::check_cpd_points(target_in, "target");
   detail::check_cpd_common(settings.outlier_weight, settings.tolerance, settings.max_iterations);
+  detail::check_fast_e_step(settings.truncation, settings.cell_size);
   const Normalization frame = working_frame(target_in, settings.normalize);
   const Points source = frame.apply(source_in), target = frame.apply(target_in);
   Points moved = source;
   const auto outcome = detail::run_em(
-      target, moved,
-      control_of(settings.outlier_weight, settings.tolerance, settings.max_iterations, settings.threads),
+      target, moved, control_of(settings),
       [&](const detail::Expectation& e, double) { return m_step(e, source, target, moved); });
   result.moved = frame.undo(moved);
   result.sigma2 = outcome.sigma2;

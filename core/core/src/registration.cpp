@@ -33,13 +33,10 @@ detail::Observation prepare_observation(const CategoryModel& model, const Points
   centroid = observed.colwise().mean().transpose();
   Observation observation;
   const Points normalised = (observed.rowwise() - centroid.transpose()) / model.normalization.scale;
-  // Farthest-point sampling costs points x kept; when every point is kept it would only reorder them.
-  observation.points =
-      normalised.rows() <= settings.sampling.observed_points
-          ? normalised
-          : select_rows(normalised,
-                        farthest_point_indices(normalised,
-                                               static_cast<std::size_t>(settings.sampling.observed_points)));
+  // A voxel pre-pass, then farthest points (sampling.hpp); every point is kept as it is when few enough.
+  observation.points = select_rows(
+      normalised, subsample_indices(normalised, static_cast<std::size_t>(settings.sampling.observed_points),
+                                    settings.sampling.voxel_size));
   observation.tree = std::make_unique<KdTree>(observation.points);
   if (settings.viewpoint)
     observation.viewpoint = (*settings.viewpoint - centroid) / model.normalization.scale;

@@ -178,6 +178,9 @@ std::vector<RegistrationOption> make_options() {
       whole(
           "observed-points", "farthest-point subset of the observation matched each step", 10, 10000000,
           [](auto& s) -> auto& { return s.sampling.observed_points; }),
+      real(
+          "voxel-size", "voxel pre-pass before the farthest-point subset (normalised length; 0 = none)", 0.0,
+          1.0, [](auto& s) -> auto& { return s.sampling.voxel_size; }),
   };
 }
 

@@ -1,7 +1,11 @@
 #include "partreg/core/sampling.hpp"
 
 #include <Eigen/Geometry>
+#include <algorithm>
+#include <cmath>
+#include <limits>
 #include <random>
+#include <unordered_map>
 
 #include "partreg/core/errors.hpp"
 
@@ -47,15 +51,82 @@ std::vector<int> farthest_point_indices(const Points& points, std::size_t count,
                      std::to_string(points.rows()));
   if (count == 0) return {};
   if (first < 0 || first >= points.rows()) throw UsageError("farthest-point sampling: bad first index");
+  // One pass per chosen point over separate coordinate arrays: update each distance to the chosen set and
+  // find the farthest in the same loop (the compiler vectorises it; no temporaries per step).
+  const Eigen::Index n = points.rows();
+  const Eigen::VectorXd xs = points.col(0), ys = points.col(1), zs = points.col(2);
+  const double *x = xs.data(), *y = ys.data(), *z = zs.data();
+  std::vector<double> distance(static_cast<std::size_t>(n), std::numeric_limits<double>::infinity());
   std::vector<int> chosen{first};
   chosen.reserve(count);
-  Eigen::VectorXd distance = (points.rowwise() - points.row(first)).rowwise().squaredNorm();
+  Eigen::Index next = first;
   while (chosen.size() < count) {
-    Eigen::Index next = 0;
-    distance.maxCoeff(&next);
+    const double cx = x[next], cy = y[next], cz = z[next];
+    double farthest = -1.0;
+    Eigen::Index farthest_index = 0;
+    for (Eigen::Index i = 0; i < n; ++i) {
+      const double dx = x[i] - cx, dy = y[i] - cy, dz = z[i] - cz;
+      const double d = std::min(distance[static_cast<std::size_t>(i)], dx * dx + dy * dy + dz * dz);
+      distance[static_cast<std::size_t>(i)] = d;
+      if (d > farthest) {
+        farthest = d;
+        farthest_index = i;
+      }
+    }
+    next = farthest_index;
     chosen.push_back(static_cast<int>(next));
-    distance = distance.cwiseMin((points.rowwise() - points.row(next)).rowwise().squaredNorm());
   }
+  return chosen;
+}
+
+std::vector<int> voxel_representatives(const Points& points, double voxel_size) {
+  if (!(voxel_size > 0.0) || !std::isfinite(voxel_size))
+    throw UsageError("the voxel size must be positive, got " + std::to_string(voxel_size));
+  const Eigen::RowVector3d lower = points.colwise().minCoeff();
+  const Eigen::RowVector3d cells = ((points.colwise().maxCoeff() - lower) / voxel_size).array().floor() + 1.0;
+  if (!(cells.prod() < 9e18)) {  // a voxel so small against the set that nothing would merge
+    std::vector<int> all(static_cast<std::size_t>(points.rows()));
+    for (std::size_t i = 0; i < all.size(); ++i) all[i] = static_cast<int>(i);
+    return all;
+  }
+  // First pass: each voxel's centroid; second: the point nearest to it.
+  std::unordered_map<std::uint64_t, int> voxel_of_key;
+  voxel_of_key.reserve(static_cast<std::size_t>(points.rows() / 4 + 1));
+  std::vector<int> voxel(static_cast<std::size_t>(points.rows()));
+  std::vector<Eigen::RowVector4d> sums;  // x y z count
+  for (Eigen::Index i = 0; i < points.rows(); ++i) {
+    const Eigen::RowVector3d cell = ((points.row(i) - lower) / voxel_size).array().floor();
+    const auto key = static_cast<std::uint64_t>(cell[0] + cells[0] * (cell[1] + cells[1] * cell[2]));
+    const auto [found, inserted] = voxel_of_key.try_emplace(key, static_cast<int>(sums.size()));
+    if (inserted) sums.emplace_back(Eigen::RowVector4d::Zero());
+    sums[static_cast<std::size_t>(found->second)] += Eigen::RowVector4d(points(i, 0), points(i, 1), points(i, 2), 1.0);
+    voxel[static_cast<std::size_t>(i)] = found->second;
+  }
+  std::vector<int> best(sums.size(), -1);
+  std::vector<double> best_distance(sums.size(), std::numeric_limits<double>::infinity());
+  for (Eigen::Index i = 0; i < points.rows(); ++i) {
+    const auto v = static_cast<std::size_t>(voxel[static_cast<std::size_t>(i)]);
+    const double d = (points.row(i) - sums[v].head<3>() / sums[v][3]).squaredNorm();
+    if (d < best_distance[v]) {
+      best_distance[v] = d;
+      best[v] = static_cast<int>(i);
+    }
+  }
+  std::sort(best.begin(), best.end());  // the input's order: deterministic, whatever the hashing
+  return best;
+}
+
+std::vector<int> subsample_indices(const Points& points, std::size_t count, double voxel_size) {
+  if (static_cast<Eigen::Index>(count) >= points.rows()) {
+    std::vector<int> all(static_cast<std::size_t>(points.rows()));
+    for (std::size_t i = 0; i < all.size(); ++i) all[i] = static_cast<int>(i);
+    return all;
+  }
+  if (voxel_size <= 0.0) return farthest_point_indices(points, count);
+  const std::vector<int> kept = voxel_representatives(points, voxel_size);
+  if (kept.size() <= count) return kept;
+  std::vector<int> chosen = farthest_point_indices(select_rows(points, kept), count);
+  for (int& row : chosen) row = kept[static_cast<std::size_t>(row)];
   return chosen;
 }
 

@@ -28,6 +28,9 @@ struct RigidCpdSettings {
   int max_iterations = 150;  ///< EM iteration cap
   bool normalize = true;     ///< register in the target's normalised frame (see file comment)
   int threads = 0;           ///< E-step threads; 0 = all cores
+  bool exact_e_step = false;  ///< E-step over every pair (the reference); else the fast one (docs/cpd.md)
+  double truncation = 1e-8;   ///< fast E-step: kernel values below this are skipped (as non-rigid)
+  double cell_size = 0.5;     ///< fast E-step: voxel cell edge in units of sigma (as non-rigid)
 };
 
 /// Rigid result: target ~ scale * rotation * source + translation.
@@ -51,6 +54,9 @@ struct AffineCpdSettings {
   int max_iterations = 150;     ///< EM iteration cap
   bool normalize = true;        ///< register in the target's normalised frame
   int threads = 0;              ///< E-step threads; 0 = all cores
+  bool exact_e_step = false;    ///< E-step over every pair (the reference); else the fast one
+  double truncation = 1e-8;     ///< fast E-step: kernel values below this are skipped (as non-rigid)
+  double cell_size = 0.5;       ///< fast E-step: voxel cell edge in units of sigma (as non-rigid)
 };
 
 /// Affine result: target ~ linear * source + translation.
@@ -66,8 +72,8 @@ struct AffineCpdResult {
 
 /// Non-rigid CPD settings. Lengths in normalised units when normalize is true.
 struct NonrigidCpdSettings {
-  /// exact: full M x M kernel and a dense solve per iteration, no truncation (the reference);
-  /// fast: low-rank kernel (Nystrom eigenpairs) and a truncated E-step once sigma is small;
+  /// exact: full M x M kernel, a dense solve and an E-step over every pair (the reference);
+  /// fast: low-rank kernel (Nystrom eigenpairs) and the fast E-step (cells and truncation, docs/cpd.md);
   /// automatic: fast above 300 source points, exact below.
   enum class Solver { automatic, exact, fast };
   double beta = 2.0;            ///< width of the Gaussian kernel G (normalised length)
@@ -78,8 +84,14 @@ struct NonrigidCpdSettings {
   bool normalize = true;        ///< register in the target's normalised frame
   Solver solver = Solver::automatic;
   int kernel_rank = 0;  ///< eigenpairs of G kept by the fast solver; 0 = chosen from the spectrum
-  double truncation =
-      1e-8;         ///< fast E-step ignores kernel values below this once the neighbourhoods are small
+  /// Fast E-step: kernel values below this are skipped (a radius of sqrt(2 ln(1/truncation)) sigma).
+  double truncation = 1e-8;
+  /// Fast E-step: points sharing a voxel cell of this edge (in units of sigma) act as one weighted point at
+  /// their centroid, so the work while sigma is large follows the cells, not the points. 0 = never merged.
+  double cell_size = 0.25;
+  /// The exact E-step (every pair, double precision) even with the fast solver's low-rank kernel: the
+  /// reference the fast E-step is tested against at sizes where the exact solver's M x M solve is too slow.
+  bool exact_e_step = false;
   int threads = 0;  ///< E-step threads; 0 = all cores
 };
 

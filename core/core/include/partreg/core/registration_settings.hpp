@@ -75,6 +75,10 @@ struct ConvergenceSettings {
 /// How much of the observation each step matches.
 struct SamplingSettings {
   int observed_points = 2000;  ///< farthest-point subset of the observation (measured: docs/registration.md)
+  /// Voxel pre-pass before the farthest-point subset (normalised length; 0 = none): a 1M-point depth image
+  /// shrinks to one point per voxel in O(N) first. 0.004 is about a fifth of the spacing of 2000 points on
+  /// a unit object, so it changes the subset little (docs/benchmarks.md, registration subsampling).
+  double voxel_size = 0.004;
 };
 
 /// One registration request.

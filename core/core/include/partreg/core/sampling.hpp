@@ -21,6 +21,18 @@ Cloud sample_surface(const Mesh& mesh, std::size_t count, std::uint64_t seed);
 /// Throws InputError when the set has fewer than `count` points.
 std::vector<int> farthest_point_indices(const Points& points, std::size_t count, int first = 0);
 
+/// One point per occupied voxel of edge `voxel_size` (the point nearest to the voxel's centroid, so every
+/// kept point is a real measurement), as row indices in the input's order. O(N). Throws UsageError for a
+/// size that is not positive.
+std::vector<int> voxel_representatives(const Points& points, double voxel_size);
+
+/// At most `count` rows spread over the set: a voxel pre-pass of `voxel_size` (0 = none), then
+/// farthest-point sampling of the voxels' representatives. The pre-pass makes a huge cloud (a depth camera's
+/// million points) cost O(N) plus FPS over the voxels; a voxel well under the kept points' spacing leaves
+/// the farthest-point choice almost as it was. Every row when the set has no more than `count`; the voxels'
+/// representatives when they are fewer than `count`.
+std::vector<int> subsample_indices(const Points& points, std::size_t count, double voxel_size);
+
 /// The rows of `points` listed in `rows`, in that order.
 Points select_rows(const Points& points, const std::vector<int>& rows);
 
