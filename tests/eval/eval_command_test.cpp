@@ -38,7 +38,8 @@ TEST(EvalCommand, QuickProtocolOnASyntheticCategoryWritesRowsTablesAndPlotsThatA
   ASSERT_EQ(run("synth mug --instances 5 --out " + data).exit_code, 0);
   const Outcome result = run("eval " + data + " --protocol quick --out " + out);
   ASSERT_EQ(result.exit_code, 0) << result.output;
-  EXPECT_NE(result.output.find("registrations"), std::string::npos);  // the progress lines
+  EXPECT_NE(result.output.find(" rows, "), std::string::npos);             // the progress lines
+  EXPECT_NE(result.output.find(" baseline rows in "), std::string::npos);  // the summary
   for (const char* file :
        {"results.csv", "tables.md", "run.json", "mugs_full_sweeps.png", "mugs_partial_sweeps.png"})
     EXPECT_TRUE(std::filesystem::exists(dir / "eval" / file)) << file;

@@ -61,7 +61,7 @@ class ProgressBar {
     const double left = elapsed / double(done) * double(total - done);
     const int filled = percent * 30 / 100;
     std::cerr << (terminal ? "\r" : "") << '[' << std::string(filled, '#') << std::string(30 - filled, '.')
-              << "] " << done << '/' << total << " registrations, " << clock_text(elapsed) << " elapsed, ~"
+              << "] " << done << '/' << total << " rows, " << clock_text(elapsed) << " elapsed, ~"
               << clock_text(left) << " left" << (terminal ? "" : "\n") << std::flush;
     drawn_ = terminal;
     if (terminal && done == total) std::cerr << '\n';

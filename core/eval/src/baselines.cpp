@@ -30,6 +30,15 @@ core::Points transformed(const core::Points& points, const Eigen::Matrix4d& T) {
   return (points * T.topLeftCorner<3, 3>().transpose()).rowwise() + T.topRightCorner<3, 1>().transpose();
 }
 
+// The squared distance below which the closest `fraction` of the pairs lie (at least 3 pairs are kept).
+double kept_threshold(const Eigen::VectorXd& squared, double fraction) {
+  std::vector<double> sorted(squared.data(), squared.data() + squared.size());
+  const std::size_t kept = std::min(
+      sorted.size(), std::max<std::size_t>(3, static_cast<std::size_t>(std::ceil(fraction * sorted.size()))));
+  std::nth_element(sorted.begin(), sorted.begin() + static_cast<long>(kept - 1), sorted.end());
+  return sorted[kept - 1];
+}
+
 // ICP from one start, solving T_template_observed (the observation moves onto the fixed template tree).
 RigidAlignment align_from(const core::KdTree& tree, const core::Points& observed,
                           const Eigen::Matrix3d& R_observed_template, const IcpSettings& settings) {
@@ -45,11 +54,7 @@ RigidAlignment align_from(const core::KdTree& tree, const core::Points& observed
   Eigen::VectorXd squared;
   for (int step = 0; step < settings.max_iterations; ++step) {
     tree.nearest_all(transformed(observed, T_template_observed), nearest, squared);
-    std::vector<double> sorted(squared.data(), squared.data() + squared.size());
-    const std::size_t kept = std::max<std::size_t>(
-        3, static_cast<std::size_t>(std::ceil(settings.kept_fraction * double(sorted.size()))));
-    std::nth_element(sorted.begin(), sorted.begin() + long(std::min(kept, sorted.size()) - 1), sorted.end());
-    const double threshold = sorted[std::min(kept, sorted.size()) - 1];
+    const double threshold = kept_threshold(squared, settings.kept_fraction);
     Eigen::Matrix3Xd from(3, observed.rows()), to(3, observed.rows());
     Eigen::Index pairs = 0;
     double sum = 0.0;
