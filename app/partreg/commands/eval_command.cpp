@@ -209,7 +209,7 @@ void run_report(const ReportOptions& options) {
   StagedFolder folder(options.out_path);
   write_reports(folder.staging(), rows);
   folder.commit();
-  std::cerr << "merged " << rows.size() << " registrations from " << options.csv_paths.size() << " runs into "
+  std::cerr << "merged " << rows.size() << " rows from " << options.csv_paths.size() << " runs into "
             << options.out_path << '\n';
 }
 
