@@ -6,7 +6,9 @@
 #include <cstdio>
 #include <fstream>
 #include <iomanip>
+#include <map>
 #include <sstream>
+#include <tuple>
 
 #include "partreg/eval/report.hpp"
 #include "support/run_partreg.hpp"
@@ -36,18 +38,33 @@ TEST(EvalCommand, QuickProtocolOnASyntheticCategoryWritesRowsTablesAndPlotsThatA
   ASSERT_EQ(run("synth mug --instances 5 --out " + data).exit_code, 0);
   const Outcome result = run("eval " + data + " --protocol quick --out " + out);
   ASSERT_EQ(result.exit_code, 0) << result.output;
-  EXPECT_NE(result.output.find("registrations"), std::string::npos);  // the progress lines
+  EXPECT_NE(result.output.find(" rows, "), std::string::npos);             // the progress lines
+  EXPECT_NE(result.output.find(" baseline rows in "), std::string::npos);  // the summary
   for (const char* file :
        {"results.csv", "tables.md", "run.json", "mugs_full_sweeps.png", "mugs_partial_sweeps.png"})
     EXPECT_TRUE(std::filesystem::exists(dir / "eval" / file)) << file;
 
   const std::vector<eval::EvalRow> rows = eval::read_rows_csv(dir / "eval" / "results.csv");
-  // 2 tested instances x (1 full + 12 views + 3 observations x 4 kinds x 3 levels) x 3 variants.
-  EXPECT_EQ(rows.size(), 2u * (13 + 36) * 3);
+  // 2 tested instances x (1 full + 12 views + 3 observations x 4 kinds x 3 levels) x (3 variants + 3
+  // baselines).
+  EXPECT_EQ(rows.size(), 2u * (13 + 36) * 6);
   for (const eval::EvalRow& row : rows) {
+    ASSERT_TRUE(std::isfinite(row.errors.symmetric_rms_per_diagonal));
+    if (row.variant == "oracle-template") continue;  // most templates lack the canonical's rows and parts
     ASSERT_TRUE(row.errors.correspondence_per_diagonal) << "synthetic data has ground-truth correspondences";
     ASSERT_TRUE(std::isfinite(row.errors.eq5_per_diagonal2));
     ASSERT_EQ(row.errors.part_eq5_per_diagonal2.size(), 2u);  // body, handle
+  }
+  // Every observation has its three baselines, and the oracle (which may pick the canonical) is never worse
+  // than the rigid canonical on the same observation.
+  std::map<std::tuple<std::string, int, int, int>, std::map<std::string, double>> by_observation;
+  for (const eval::EvalRow& row : rows)
+    by_observation[std::make_tuple(row.instance, row.view, static_cast<int>(row.perturbation),
+                                   row.level_index)][row.variant] = row.errors.symmetric_rms_per_diagonal;
+  EXPECT_EQ(by_observation.size(), 2u * (13 + 36));
+  for (const auto& [observation, figures] : by_observation) {
+    ASSERT_EQ(figures.size(), 6u);
+    EXPECT_LE(figures.at("oracle-template"), figures.at("rigid-canonical") + 1e-12);
   }
   // The tables are the CSV's means: Table 1 and Table 2 rows recomputed from the rows.
   const std::string tables = read_text(dir / "eval" / "tables.md");
@@ -60,6 +77,39 @@ TEST(EvalCommand, QuickProtocolOnASyntheticCategoryWritesRowsTablesAndPlotsThatA
   // The registrations did something: a fully observed mug is matched far better than by chance
   // (a canonical mug dropped at the wrong place scores above 1e-2).
   EXPECT_LT(eval::mean_eq5_per_diagonal2(rows, "mugs", "hol+part", false), 2e-3);
+  // So did the rigid baselines: the oracle's aligned template is close to the truth (measured 3.3% of the
+  // diagonal) but, being rigid, not as close as partreg's deformed canonical on a full view (measured 2.6%).
+  const double oracle = eval::mean_symmetric_rms_per_diagonal(rows, "mugs", "oracle-template", false);
+  EXPECT_LT(oracle, 0.05);
+  EXPECT_LT(eval::mean_symmetric_rms_per_diagonal(rows, "mugs", "hol+part", false), oracle);
+  // The baseline tables are the CSV's means: % of the diagonal, then each variant over the oracle template.
+  const std::vector<std::string> variants = {"holistic", "partwise", "hol+part"};
+  for (bool partial : {false, true}) {
+    const auto mean = [&](const std::string& method) {
+      return eval::mean_symmetric_rms_per_diagonal(rows, "mugs", method, partial);
+    };
+    std::string line = "| mugs |";
+    for (const char* method :
+         {"holistic", "partwise", "hol+part", "oracle-template", "rigid-canonical", "mean-shape"})
+      line += " " + two_decimals(100 * mean(method)) + " |";
+    for (const std::string& variant : variants)
+      line += " " + two_decimals(mean(variant) / mean("oracle-template")) + " |";
+    EXPECT_NE(tables.find(line + "\n"), std::string::npos) << line << "\n" << tables;
+  }
+}
+
+TEST(EvalCommand, NoBaselinesLeavesOnlyTheVariantsRows) {
+  testing::TempDir dir;
+  const std::string data = (dir / "mugs").string(), out = (dir / "eval").string();
+  ASSERT_EQ(run("synth mug --instances 4 --out " + data).exit_code, 0);
+  const Outcome result =
+      run("eval " + data +
+          " --protocol quick --views 0 --levels 1 --variants holistic --no-baselines --out " + out);
+  ASSERT_EQ(result.exit_code, 0) << result.output;
+  const std::vector<eval::EvalRow> rows = eval::read_rows_csv(dir / "eval" / "results.csv");
+  EXPECT_EQ(rows.size(), 2u * (1 + 4));  // 2 instances x (full view + 4 kinds x 1 level), holistic only
+  EXPECT_TRUE(eval::baselines_of(rows).empty());
+  EXPECT_EQ(read_text(dir / "eval" / "tables.md").find("Against the baselines"), std::string::npos);
 }
 
 TEST(EvalCommand, BadInputIsRefusedAndNothingIsOverwritten) {

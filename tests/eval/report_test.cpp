@@ -74,6 +74,53 @@ TEST(EvalReport, CsvRoundTripsAndTablesShowTheMeans) {
   EXPECT_FALSE(eval::write_sweep_plot(dir / "partial.png", back, "mugs", true));  // no partial sweep
 }
 
+eval::EvalRow rms_row(const std::string& method, int view, double rms, double eq5 = 1e-4) {
+  eval::EvalRow r = row(method, view, eval::Perturbation::none, -1, eq5);
+  r.errors.symmetric_rms_per_diagonal = rms;
+  return r;
+}
+
+TEST(EvalReport, BaselineTableShowsTheMeansAndRatiosOfTheRowsAndLeavesTheEq5TablesAlone) {
+  // Full views: holistic 0.02 and 0.03 (mean 0.025), the oracle 0.04 and 0.06 (mean 0.05): ratio 0.50.
+  // Partial views: holistic 0.045 against the oracle's 0.03: ratio 1.50.
+  std::vector<eval::EvalRow> rows = {rms_row("holistic", -1, 0.02),
+                                     rms_row("holistic", -1, 0.03),
+                                     rms_row("oracle-template", -1, 0.04, 9e-3),
+                                     rms_row("oracle-template", -1, 0.06, 9e-3),
+                                     rms_row("rigid-canonical", -1, 0.08),
+                                     rms_row("mean-shape", -1, 0.07),
+                                     rms_row("holistic", 2, 0.045),
+                                     rms_row("oracle-template", 2, 0.03, 9e-3),
+                                     rms_row("rigid-canonical", 2, 0.05),
+                                     rms_row("mean-shape", 2, 0.06)};
+  // A perturbed row is not a clean observation: it must not enter the means.
+  eval::EvalRow swept = rms_row("oracle-template", -1, 0.9);
+  swept.perturbation = eval::Perturbation::noise, swept.level_index = 0;
+  rows.push_back(swept);
+  testing::TempDir dir;
+  eval::write_rows_csv(dir / "r.csv", rows);
+  const std::vector<eval::EvalRow> back = eval::read_rows_csv(dir / "r.csv");
+  EXPECT_EQ(eval::variants_of(back), std::vector<std::string>{"holistic"});
+  EXPECT_EQ(eval::baselines_of(back),
+            (std::vector<std::string>{"oracle-template", "rigid-canonical", "mean-shape"}));
+  EXPECT_DOUBLE_EQ(eval::mean_symmetric_rms_per_diagonal(back, "mugs", "oracle-template", false), 0.05);
+
+  const std::string tables = eval::markdown_report(back);
+  // Columns: holistic, the three baselines (% of the diagonal), then holistic / oracle-template.
+  EXPECT_NE(tables.find("| category | holistic | oracle-template | rigid-canonical | mean-shape | "
+                        "holistic / oracle-template |"),
+            std::string::npos)
+      << tables;
+  EXPECT_NE(tables.find("| mugs | 2.50 | 5.00 | 8.00 | 7.00 | 0.50 |"), std::string::npos) << tables;
+  EXPECT_NE(tables.find("| mugs | 4.50 | 3.00 | 5.00 | 6.00 | 1.50 |"), std::string::npos) << tables;
+  // Table 1 shows the holistic rows' Eq. 5 alone (1.00 x 1e4): the oracle's 9e-3 would show as a column.
+  EXPECT_NE(tables.find("Table 1: mean Eq. 5 x 1e4, fully observed instances\n\n| category | holistic |\n"
+                        "|---|---|\n| mugs | 1.00 |"),
+            std::string::npos)
+      << tables;
+  EXPECT_NE(tables.find("Registrations: 3 (and 8 baseline rows"), std::string::npos) << tables;
+}
+
 TEST(EvalReport, ACsvFromElsewhereIsRefusedWithItsName) {
   testing::TempDir dir;
   std::ofstream(dir / "other.csv") << "a,b,c\n1,2,3\n";

@@ -3,6 +3,7 @@
 // categories).
 #include <unistd.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <fstream>
@@ -32,7 +33,7 @@ using Clock = std::chrono::steady_clock;
 struct EvalOptions {
   std::string dataset_path, out_path, labels_path, canonical, protocol = "paper", shard = "1/1";
   std::vector<std::string> variants = core::enum_names<core::Variant>();
-  bool no_viewpoint = false;
+  bool no_viewpoint = false, no_baselines = false;
   int folds = -1, views = -1;
   std::vector<int> levels;  // 1-based indices of the paper's five levels; empty = the protocol's
   io::DatasetOptions dataset;
@@ -60,7 +61,7 @@ class ProgressBar {
     const double left = elapsed / double(done) * double(total - done);
     const int filled = percent * 30 / 100;
     std::cerr << (terminal ? "\r" : "") << '[' << std::string(filled, '#') << std::string(30 - filled, '.')
-              << "] " << done << '/' << total << " registrations, " << clock_text(elapsed) << " elapsed, ~"
+              << "] " << done << '/' << total << " rows, " << clock_text(elapsed) << " elapsed, ~"
               << clock_text(left) << " left" << (terminal ? "" : "\n") << std::flush;
     drawn_ = terminal;
     if (terminal && done == total) std::cerr << '\n';
@@ -132,6 +133,7 @@ void configure(EvalOptions& options) {
   }
   if (settings.variants.empty()) throw UsageError("--variants needs at least one variant");
   settings.use_viewpoint = !options.no_viewpoint;
+  settings.baselines = !options.no_baselines;
   parse_shard(options.shard, settings);
 }
 
@@ -170,22 +172,31 @@ void run_eval(EvalOptions& options) {
   const std::vector<eval::EvalRow> rows = eval::run_evaluation(input, options.settings, std::ref(progress));
   const double seconds = std::chrono::duration<double>(Clock::now() - start).count();
   write_reports(folder.staging(), rows);
+  // Registrations only: the baseline rows have their own times (tables.md).
+  const std::vector<std::string> variants = eval::variants_of(rows);
   double registration_seconds = 0.0;
-  for (const eval::EvalRow& row : rows) registration_seconds += row.seconds;
+  std::size_t registrations = 0;
+  for (const eval::EvalRow& row : rows)
+    if (std::find(variants.begin(), variants.end(), row.variant) != variants.end())
+      registration_seconds += row.seconds, ++registrations;
   const nlohmann::json run = {
       {"dataset", options.dataset_path},
       {"protocol", options.protocol},
       {"shard", options.shard},
       {"threads", options.settings.threads},
       {"variants", options.variants},
+      {"baselines", options.settings.baselines},
       {"registration", registration_json(options.settings.registration)},
-      {"registrations", rows.size()},
+      {"registrations", registrations},
+      {"rows", rows.size()},
       {"seconds", seconds},
-      {"mean_registration_seconds", rows.empty() ? 0.0 : registration_seconds / rows.size()}};
+      {"mean_registration_seconds", registrations == 0 ? 0.0 : registration_seconds / registrations}};
   write_json_or_stdout(run, (folder.staging() / "run.json").string(), /*log=*/false);
   folder.commit();
-  std::cerr << rows.size() << " registrations in " << clock_text(seconds) << " ("
-            << (rows.empty() ? 0.0 : registration_seconds / rows.size()) << " s each); wrote results.csv, "
+  std::cerr << registrations << " registrations and " << rows.size() - registrations << " baseline rows in "
+            << clock_text(seconds) << " ("
+            << (registrations == 0 ? 0.0 : registration_seconds / registrations)
+            << " s per registration); wrote results.csv, "
             << "tables.md and plots to " << options.out_path << '\n';
 }
 
@@ -204,7 +215,7 @@ void run_report(const ReportOptions& options) {
   StagedFolder folder(options.out_path);
   write_reports(folder.staging(), rows);
   folder.commit();
-  std::cerr << "merged " << rows.size() << " registrations from " << options.csv_paths.size() << " runs into "
+  std::cerr << "merged " << rows.size() << " rows from " << options.csv_paths.size() << " runs into "
             << options.out_path << '\n';
 }
 
@@ -233,6 +244,8 @@ void add_eval_command(CLI::App& app) {
   // partial view's own camera, unless --no-viewpoint).
   add_registration_flags(command, o->settings.registration, {"variant", "viewpoint"});
   command->add_flag("--no-viewpoint", o->no_viewpoint, "do not tell the registration where the camera was");
+  command->add_flag("--no-baselines", o->no_baselines,
+                    "skip the baseline rows (oracle-template, rigid-canonical, mean-shape)");
   command->add_option("--samples", o->dataset.points_per_instance, "surface samples per mesh (the truth)")
       ->capture_default_str();
   command->add_option("--seed", o->settings.seed, "seed of views, samples and perturbations")

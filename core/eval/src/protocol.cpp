@@ -15,6 +15,7 @@
 #include "partreg/core/normalization.hpp"
 #include "partreg/core/parallel.hpp"
 #include "partreg/core/sampling.hpp"
+#include "partreg/eval/baselines.hpp"
 
 namespace partreg::eval {
 namespace {
@@ -131,10 +132,34 @@ std::optional<core::Points> true_correspondents(const EvalInput& input, const co
   return core::select_rows(tested->second, nearest);
 }
 
-// Registers every variant on one perturbed observation and measures each against the moved ground truth.
-void run_job(const EvalInput& input, const EvalSettings& settings, const core::CategoryModel& model,
+// What one fold shares between its jobs.
+struct FoldContext {
+  const core::CategoryModel& model;
+  const std::vector<Template>& templates;  // empty without baselines
+};
+
+std::size_t rows_per_job(const EvalSettings& settings, const std::vector<core::Variant>& variants) {
+  return variants.size() + (settings.baselines ? core::EnumNames<Baseline>::table.size() : 0);
+}
+
+// partreg's holistic pose on this observation: a variant's holistic fit where one ran (holistic and
+// hol+part fit the whole object first), else a holistic registration of its own.
+Eigen::Matrix4d holistic_pose(const core::CategoryModel& model, const core::Points& observed,
+                              core::RegistrationSettings registration,
+                              const std::vector<core::RegistrationResult>& results) {
+  for (const core::RegistrationResult& result : results)
+    if (!result.fits.empty() && result.fits.front().space == model.holistic().name)
+      return result.fits.front().T_observed_canonical;
+  registration.variant = core::Variant::holistic;
+  return core::register_observation(model, observed, registration).fits.front().T_observed_canonical;
+}
+
+// Registers every variant on one perturbed observation and measures each against the moved ground truth;
+// then the baselines on the same observation and truth.
+void run_job(const EvalInput& input, const EvalSettings& settings, const FoldContext& fold,
              const TestCase& test, const std::optional<core::Points>& correspondents, const Job& job,
              const std::vector<core::Variant>& variants, EvalRow* rows) {
+  const core::CategoryModel& model = fold.model;
   const core::TrainingInstance& instance = input.instances[test.instance];
   const Observation& observation = test.observations[job.observation];
   const double paper_level = job.level_index < 0 ? 0.0 : paper_levels(job.kind)[job.level_index];
@@ -149,27 +174,42 @@ void run_job(const EvalInput& input, const EvalSettings& settings, const core::C
                      : std::nullopt;
   core::RegistrationSettings registration = settings.registration;
   if (observation.viewpoint) registration.viewpoint = perturbed.T_perturbed_original * *observation.viewpoint;
+  const auto make_row = [&](const std::string& name, const core::TruthErrors& errors, double seconds) {
+    return EvalRow{input.category,
+                   instance.name,
+                   model.training.canonical,
+                   name,
+                   test.fold,
+                   observation.view,
+                   observation.direction,
+                   job.kind,
+                   job.level_index,
+                   paper_level,
+                   level,
+                   test.diagonal,
+                   static_cast<int>(perturbed.points.rows()),
+                   errors,
+                   seconds};
+  };
+  std::vector<core::RegistrationResult> results;
   for (std::size_t v = 0; v < variants.size(); ++v) {
     registration.variant = variants[v];
-    const core::RegistrationResult result = core::register_observation(model, perturbed.points, registration);
-    EvalRow& row = rows[v];
-    row = {input.category,
-           instance.name,
-           model.training.canonical,
-           core::enum_name(variants[v]),
-           test.fold,
-           observation.view,
-           observation.direction,
-           job.kind,
-           job.level_index,
-           paper_level,
-           level,
-           test.diagonal,
-           static_cast<int>(perturbed.points.rows()),
-           core::measure_against_truth(result.deformed, result.part, model.part_names, truth, test.diagonal,
-                                       truth_of_row ? &*truth_of_row : nullptr),
-           result.seconds};
+    results.push_back(core::register_observation(model, perturbed.points, registration));
+    rows[v] =
+        make_row(core::enum_name(variants[v]),
+                 core::measure_against_truth(results[v].deformed, results[v].part, model.part_names, truth,
+                                             test.diagonal, truth_of_row ? &*truth_of_row : nullptr),
+                 results[v].seconds);
   }
+  if (!settings.baselines) return;
+  BaselineObservation seen{&perturbed.points, &truth, test.diagonal, truth_of_row ? &*truth_of_row : nullptr,
+                           holistic_pose(model, perturbed.points, registration, results)};
+  const std::vector<Eigen::Matrix3d> starts =
+      start_rotations(settings.registration.initialisation.restarts, settings.registration.initialisation.up);
+  const std::vector<BaselineScore> scores = score_baselines(model, fold.templates, seen, starts);
+  for (std::size_t b = 0; b < scores.size(); ++b)
+    rows[variants.size() + b] =
+        make_row(core::enum_name(scores[b].baseline), scores[b].errors, scores[b].seconds);
 }
 
 }  // namespace
@@ -258,7 +298,7 @@ std::vector<EvalRow> run_evaluation(const EvalInput& input, const EvalSettings& 
   for (const std::string& name : tested) {
     TestCase test =
         make_test_case(input, index_of(input, name), folds.at(name), settings, directions, progress);
-    total += plan_jobs(test, settings.protocol).size() * variants.size();
+    total += plan_jobs(test, settings.protocol).size() * rows_per_job(settings, variants);
     tests_by_fold[test.fold].push_back(std::move(test));
   }
 
@@ -271,8 +311,12 @@ std::vector<EvalRow> run_evaluation(const EvalInput& input, const EvalSettings& 
     core::TrainingSettings training = settings.training;
     if (!input.fixed_canonical.empty()) training.canonical = input.fixed_canonical;
     const auto start = Clock::now();
+    const std::vector<core::TrainingInstance> instances = training_set(input, folds, fold);
     const core::CategoryModel model =
-        core::train_category(input.category, training_set(input, folds, fold), input.part_names, training);
+        core::train_category(input.category, instances, input.part_names, training);
+    const std::vector<Template> templates =
+        settings.baselines ? fold_templates(model, instances) : std::vector<Template>{};
+    const FoldContext context{model, templates};
     if (progress) {
       std::ostringstream line;
       line << "fold " << fold << ": trained on " << model.training.instances.size() << " instances in "
@@ -284,14 +328,14 @@ std::vector<EvalRow> run_evaluation(const EvalInput& input, const EvalSettings& 
       const std::optional<core::Points> correspondents =
           true_correspondents(input, model, input.instances[test.instance].name);
       const std::vector<Job> jobs = plan_jobs(test, settings.protocol);
-      const std::size_t first = rows.size();
-      rows.resize(first + jobs.size() * variants.size());
+      const std::size_t first = rows.size(), per_job = rows_per_job(settings, variants);
+      rows.resize(first + jobs.size() * per_job);
       arena.execute([&] {
         tbb::parallel_for(std::size_t{0}, jobs.size(), [&](std::size_t j) {
           const core::ThreadBudget one(1);  // the arena holds the budget: registrations inside stay serial
-          run_job(input, settings, model, test, correspondents, jobs[j], variants,
-                  &rows[first + j * variants.size()]);
-          const std::size_t now = done += variants.size();
+          run_job(input, settings, context, test, correspondents, jobs[j], variants,
+                  &rows[first + j * per_job]);
+          const std::size_t now = done += per_job;
           if (progress) {
             const std::lock_guard<std::mutex> lock(progress_mutex);
             progress(now, total, "");

@@ -11,6 +11,7 @@
 
 #include "partreg/core/errors.hpp"
 #include "partreg/core/registration_settings.hpp"
+#include "partreg/eval/baselines.hpp"
 
 namespace partreg::eval {
 namespace {
@@ -129,12 +130,25 @@ std::vector<std::string> categories_of(const std::vector<EvalRow>& rows) {
   return categories;
 }
 
+namespace {
+
+// The names of `names` that some row carries, in that order.
+std::vector<std::string> present(const std::vector<EvalRow>& rows, const std::vector<std::string>& names) {
+  std::vector<std::string> found;
+  for (const std::string& name : names)
+    if (std::any_of(rows.begin(), rows.end(), [&](const EvalRow& r) { return r.variant == name; }))
+      found.push_back(name);
+  return found;
+}
+
+}  // namespace
+
 std::vector<std::string> variants_of(const std::vector<EvalRow>& rows) {
-  std::vector<std::string> variants;
-  for (const std::string& variant : core::enum_names<core::Variant>())
-    if (std::any_of(rows.begin(), rows.end(), [&](const EvalRow& r) { return r.variant == variant; }))
-      variants.push_back(variant);
-  return variants;
+  return present(rows, core::enum_names<core::Variant>());
+}
+
+std::vector<std::string> baselines_of(const std::vector<EvalRow>& rows) {
+  return present(rows, core::enum_names<Baseline>());
 }
 
 void write_rows_csv(const std::filesystem::path& path, const std::vector<EvalRow>& rows) {
@@ -205,6 +219,17 @@ double swept_clean_eq5_per_diagonal2(const std::vector<EvalRow>& rows, const std
                swept.count({r.instance, r.view}) > 0;
       },
       [](const EvalRow& r) { return r.errors.eq5_per_diagonal2; });
+}
+
+double mean_symmetric_rms_per_diagonal(const std::vector<EvalRow>& rows, const std::string& category,
+                                       const std::string& method, bool partial) {
+  return mean_of(
+      rows,
+      [&](const EvalRow& r) {
+        return r.category == category && r.variant == method && is_partial(r) == partial &&
+               r.perturbation == Perturbation::none;
+      },
+      [](const EvalRow& r) { return r.errors.symmetric_rms_per_diagonal; });
 }
 
 namespace {
@@ -282,12 +307,47 @@ void sweep_tables(std::ostringstream& out, const std::vector<EvalRow>& rows) {
     }
 }
 
+// partreg against the baselines on the same clean observations: the symmetric RMS figure of every variant
+// and baseline, then each variant's mean over the oracle template's mean.
+void baseline_tables(std::ostringstream& out, const std::vector<EvalRow>& rows) {
+  const std::vector<std::string> variants = variants_of(rows), baselines = baselines_of(rows);
+  if (baselines.empty()) return;
+  const std::string oracle = core::enum_name(Baseline::oracle_template);
+  const bool has_oracle = std::find(baselines.begin(), baselines.end(), oracle) != baselines.end();
+  std::vector<std::string> columns = variants;
+  columns.insert(columns.end(), baselines.begin(), baselines.end());
+  if (has_oracle)
+    for (const std::string& variant : variants) columns.push_back(variant + " / " + oracle);
+  for (bool partial : {false, true}) {
+    out << "\nAgainst the baselines, " << (partial ? "partial views" : "full views")
+        << ": mean symmetric RMS, % of the diagonal, and each variant's mean over the oracle template's "
+           "(same clean observations):\n\n";
+    header_row(out, "category", columns);
+    for (const std::string& category : categories_of(rows)) {
+      out << "| " << category << " |";
+      for (const std::string& method : variants)
+        out << ' ' << cell(mean_symmetric_rms_per_diagonal(rows, category, method, partial), 100) << " |";
+      for (const std::string& method : baselines)
+        out << ' ' << cell(mean_symmetric_rms_per_diagonal(rows, category, method, partial), 100) << " |";
+      const double oracle_mean = mean_symmetric_rms_per_diagonal(rows, category, oracle, partial);
+      if (has_oracle)
+        for (const std::string& variant : variants)
+          out << ' '
+              << cell(mean_symmetric_rms_per_diagonal(rows, category, variant, partial) / oracle_mean, 1)
+              << " |";
+      out << "\n";
+    }
+  }
+}
+
 void timing_table(std::ostringstream& out, const std::vector<EvalRow>& rows) {
-  out << "\nTime per registration (s, mean over every row):\n\n";
-  header_row(out, "category", variants_of(rows));
+  std::vector<std::string> methods = variants_of(rows), baselines = baselines_of(rows);
+  methods.insert(methods.end(), baselines.begin(), baselines.end());
+  out << "\nTime per registration or baseline (s, mean over every row):\n\n";
+  header_row(out, "category", methods);
   for (const std::string& category : categories_of(rows)) {
     out << "| " << category << " |";
-    for (const std::string& variant : variants_of(rows))
+    for (const std::string& variant : methods)
       out << ' '
           << cell(mean_of(
                       rows, [&](const EvalRow& r) { return r.category == category && r.variant == variant; },
@@ -302,14 +362,19 @@ void timing_table(std::ostringstream& out, const std::vector<EvalRow>& rows) {
 
 std::string markdown_report(const std::vector<EvalRow>& rows) {
   std::ostringstream out;
-  out << "Registrations: " << rows.size()
-      << ". Eq. 5 is the paper's error (mean squared distance from each "
+  const std::vector<std::string> variants = variants_of(rows);
+  const auto registrations = std::count_if(rows.begin(), rows.end(), [&](const EvalRow& r) {
+    return std::find(variants.begin(), variants.end(), r.variant) != variants.end();
+  });
+  out << "Registrations: " << registrations << " (and " << rows.size() - std::size_t(registrations)
+      << " baseline rows, baselines.hpp). Eq. 5 is the paper's error (mean squared distance from each "
          "deformed canonical point to the closest point of the true instance), divided by the square of the "
          "instance's bounding-box diagonal; tables show it x 1e4.\n";
   const auto eq5 = [](const EvalRow& r) { return r.errors.eq5_per_diagonal2; };
   const auto chamfer = [](const EvalRow& r) { return r.errors.chamfer_per_diagonal; };
   category_table(out, rows, "Table 1: mean Eq. 5 x 1e4, fully observed instances", false, eq5, 1e4, 2);
   category_table(out, rows, "Table 2: mean Eq. 5 x 1e4, partial views", true, eq5, 1e4, 2);
+  baseline_tables(out, rows);
   category_table(out, rows, "Symmetric Chamfer distance, % of the diagonal, full views", false, chamfer, 100,
                  2);
   category_table(out, rows, "Symmetric Chamfer distance, % of the diagonal, partial views", true, chamfer,

@@ -2,8 +2,9 @@
 /// \file
 /// The paper's evaluation protocol (section 4) on a category: every tested instance is new to the model
 /// (leave-one-out, or k folds), observed fully and from partial views cast from a tessellated sphere, clean
-/// and under the four perturbation sweeps, registered with every variant. One row per registration, so
-/// nothing is lost; tables and plots are made from the rows (report.hpp).
+/// and under the four perturbation sweeps, registered with every variant and scored, beside the variants, by
+/// the baselines of baselines.hpp on the same observation and truth. One row per registration or baseline,
+/// so nothing is lost; tables and plots are made from the rows (report.hpp).
 
 #include <functional>
 #include <map>
@@ -51,6 +52,7 @@ struct EvalSettings {
   core::TrainingSettings training;
   core::RegistrationSettings registration;  ///< the variant is set per row
   CameraSettings camera;
+  bool baselines = true;        ///< also score the baselines (baselines.hpp): one row each per observation
   bool use_viewpoint = true;    ///< partial views tell the registration where the camera was
   int full_view_points = 4000;  ///< surface samples of a mesh's full view (a different sample than the truth)
   int threads = 0;              ///< 0 = all cores
@@ -59,9 +61,10 @@ struct EvalSettings {
   std::uint64_t seed = 1;
 };
 
-/// One registration of the protocol.
+/// One registration of the protocol, or one baseline on the same observation.
 struct EvalRow {
-  std::string category, instance, canonical, variant;
+  std::string category, instance, canonical;
+  std::string variant;  ///< a core::Variant's name, or a Baseline's (baselines.hpp)
   int fold = 0;
   int view = -1;  ///< -1: the full view; else the index of the partial view's direction
   Eigen::Vector3d direction = Eigen::Vector3d::Zero();  ///< unit direction to the camera (zero for full)
@@ -72,7 +75,7 @@ struct EvalRow {
   double diagonal = 0.0;     ///< the instance's bounding-box diagonal (data units)
   int observed_points = 0;
   core::TruthErrors errors;
-  double seconds = 0.0;  ///< registration time
+  double seconds = 0.0;  ///< registration time (a baseline's: its alignment and scoring)
 };
 
 /// Progress: rows done, rows planned, and a line worth logging (empty when there is none).
@@ -83,7 +86,8 @@ using EvalProgress = std::function<void(std::size_t done, std::size_t total, con
 std::vector<std::string> tested_instances(const EvalInput& input, const EvalSettings& settings);
 
 /// Runs the protocol. Variants that need parts are dropped for a category without parts (reported through
-/// `progress`). Rows are in a fixed order, independent of threads and shards.
+/// `progress`). Each observation gives its variants' rows, then (with `baselines`) its baselines' rows in
+/// Baseline order. Rows are in a fixed order, independent of threads and shards.
 std::vector<EvalRow> run_evaluation(const EvalInput& input, const EvalSettings& settings,
                                     const EvalProgress& progress = {});
 

@@ -29,8 +29,15 @@ double mean_eq5_per_diagonal2(const std::vector<EvalRow>& rows, const std::strin
 double swept_clean_eq5_per_diagonal2(const std::vector<EvalRow>& rows, const std::string& category,
                                      const std::string& variant, bool partial);
 
+/// The mean symmetric RMS figure (TruthErrors::symmetric_rms_per_diagonal) of a variant or a baseline over
+/// the clean rows that match; NaN when none match. `partial` as for mean_eq5_per_diagonal2.
+double mean_symmetric_rms_per_diagonal(const std::vector<EvalRow>& rows, const std::string& category,
+                                       const std::string& method, bool partial);
+
 /// The Markdown report: Tables 1 and 2 (mean Eq. 5 x 1e4 on full and partial views, per category and
-/// variant), Chamfer, per-part and correspondence errors, the sweeps per category, and run times.
+/// variant), the symmetric RMS figure of every variant and baseline with each variant's ratio to the oracle
+/// template (ratio of the means), Chamfer, per-part and correspondence errors, the sweeps per category (the
+/// variants only), and run times.
 std::string markdown_report(const std::vector<EvalRow>& rows);
 
 /// A Figure 5 (full views) or Figure 7 (partial views) style plot for one category: four panels (noise,
@@ -39,8 +46,10 @@ std::string markdown_report(const std::vector<EvalRow>& rows);
 bool write_sweep_plot(const std::filesystem::path& path, const std::vector<EvalRow>& rows,
                       const std::string& category, bool partial);
 
-/// The categories and variants present in rows, in first-seen order (variants in the paper's order).
+/// The categories, variants and baselines present in rows: categories in first-seen order, variants in the
+/// paper's order, baselines in Baseline order (baselines.hpp).
 std::vector<std::string> categories_of(const std::vector<EvalRow>& rows);
 std::vector<std::string> variants_of(const std::vector<EvalRow>& rows);
+std::vector<std::string> baselines_of(const std::vector<EvalRow>& rows);
 
 }  // namespace partreg::eval
