@@ -54,6 +54,7 @@ void print_summary(const core::CategoryModel& model, const core::TrainingReport&
 void run_train(TrainOptions& options) {
   if (options.settings.latent_dimensions < 1) throw UsageError("--latent must be at least 1");
   if (options.settings.canonical_points < 10) throw UsageError("--points must be at least 10");
+  if (options.settings.min_part_points < 0) throw UsageError("--part-points must be zero or positive");
   if (!options.canonical.empty()) options.settings.canonical = options.canonical;
   io::Dataset dataset = io::read_dataset(options.dataset_path, options.dataset);
   std::cerr << "dataset " << dataset.name << ": " << dataset.instances.size() << " instances"
@@ -93,6 +94,10 @@ void add_train_command(CLI::App& app) {
   command->add_option("--latent", options->settings.latent_dimensions, "dimensions per shape space")
       ->capture_default_str();
   command->add_option("--points", options->settings.canonical_points, "canonical points M")
+      ->capture_default_str();
+  command
+      ->add_option("--part-points", options->settings.min_part_points,
+                   "floor of canonical points per part (0: none)")
       ->capture_default_str();
   command->add_option("--samples", options->dataset.points_per_instance, "surface samples per mesh instance")
       ->capture_default_str();

@@ -60,6 +60,7 @@ nlohmann::json training_json(const core::TrainingRecord& record) {
           {"canonical", record.canonical},
           {"canonical_choice", record.canonical_choice},
           {"canonical_points", record.canonical_points},
+          {"min_part_points", record.min_part_points},
           {"beta", record.beta},
           {"lambda", record.lambda},
           {"outlier_weight", record.outlier_weight},
@@ -188,6 +189,7 @@ core::TrainingRecord training_from_json(const nlohmann::json& json) {
   record.canonical = json.at("canonical").get<std::string>();
   record.canonical_choice = json.at("canonical_choice").get<std::string>();
   record.canonical_points = json.at("canonical_points").get<int>();
+  record.min_part_points = json.value("min_part_points", 0);  // absent in files written before the floor
   record.beta = json.at("beta").get<double>();
   record.lambda = json.at("lambda").get<double>();
   record.outlier_weight = json.at("outlier_weight").get<double>();
