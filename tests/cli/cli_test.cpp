@@ -132,7 +132,7 @@ TEST_F(Cli, RegisterWritesItsOutputsAndRefusesBadInput) {
     EXPECT_TRUE(std::filesystem::exists(dir / file)) << file;
   std::ifstream json(dir / "r.json");
   const std::string text{std::istreambuf_iterator<char>(json), {}};
-  for (const char* key : {"T_observed_canonical", "latent", "eq5_normalised", "p90", "\"handle\""})
+  for (const char* key : {"T_observed_canonical", "latent", "eq5_per_diagonal2", "p90", "\"handle\""})
     EXPECT_NE(text.find(key), std::string::npos) << key;
 
   write("few.xyz", "0 0 0\n1 0 0\n0 1 0\n0 0 1\n1 1 1\n");
@@ -178,6 +178,13 @@ TEST_F(Cli, LabelAssignsFacesAndRefusesAnEmptySelection) {
                 .exit_code,
             2);
   EXPECT_EQ(run("label " + mesh + " --part lid --sphere 0,0,0,-1 --out " + path("neg.json")).exit_code, 2);
+  // The library names the value, the command adds the flag that carried it.
+  const Outcome zero_normal =
+      run("label " + mesh + " --part lid --plane 0,0,0,0,0,0 --out " + path("z.json"));
+  EXPECT_EQ(zero_normal.exit_code, 2);
+  EXPECT_NE(zero_normal.output.find("partreg: --plane: the plane's normal 0,0,0 has zero length"),
+            std::string::npos)
+      << zero_normal.output;
   EXPECT_FALSE(std::filesystem::exists(dir / "none.json"));
 }
 

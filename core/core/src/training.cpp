@@ -318,9 +318,10 @@ CategoryModel train_category(const std::string& category, const std::vector<Trai
       throw InputError("part '" + part_names[part] + "' has " +
                        (canonical_part.rows() == 0
                             ? std::string("no canonical point")
-                            : "only " + std::to_string(canonical_part.rows()) + " canonical points") +
-                       " after sampling (at least 10 are needed): its labelled surface on '" +
-                       canonical.name + "' is too small; check the labels");
+                            : "only " + std::to_string(canonical_part.rows()) + " of the canonical's " +
+                                  std::to_string(model.canonical.rows()) + " points") +
+                       " after sampling (a part space needs 10): its labelled surface on '" + canonical.name +
+                       "' is too small; check the labels or keep more canonical points");
     std::vector<Points> part_weights;
     for (std::size_t i = 0; i < instances.size(); ++i) {
       if (i == canonical_index) {
