@@ -2,6 +2,8 @@
 
 #include <gtest/gtest.h>
 
+#include <map>
+
 #include "partreg/core/deformation.hpp"
 #include "partreg/core/errors.hpp"
 #include "partreg/core/kdtree.hpp"
@@ -130,6 +132,33 @@ TEST(Registration, TheDeformedMeshFollowsTheDeformedPoints) {
   Eigen::VectorXd squared;
   surface.nearest_all(again, index, squared);
   EXPECT_LT(squared.cwiseSqrt().mean(), 0.02 * diagonal);
+}
+
+TEST(Registration, TheSeamGapMeasuresHowFarThePartsCameApart) {
+  const Points observed = transform(setup().held_out.points, known_pose());
+  const CategoryModel& model = setup().model;
+  std::map<Variant, SeamGap> gaps;
+  for (Variant variant : {Variant::holistic, Variant::partwise, Variant::hol_part}) {
+    RegistrationSettings settings;
+    settings.variant = variant;
+    gaps[variant] = seam_gap(model, register_observation(model, observed, settings));
+    std::cerr << enum_name(variant) << ": seam gap max " << gaps[variant].max << ", mean "
+              << gaps[variant].mean << " of the diagonal over " << gaps[variant].points
+              << " boundary points\n";
+  }
+  EXPECT_EQ(gaps[Variant::holistic].points, 0);  // one field: no seam
+  EXPECT_GT(gaps[Variant::hol_part].points, 0);
+  // Moving the handle's pose by 10% of the diagonal opens every boundary point by that much, give or take
+  // the gap it had (triangle inequality).
+  RegistrationSettings settings;
+  settings.variant = Variant::hol_part;
+  RegistrationResult shifted = register_observation(model, observed, settings);
+  const SeamGap before = seam_gap(model, shifted);
+  for (SpaceFit& fit : shifted.fits)
+    if (fit.space == "handle") fit.T_observed_canonical(0, 3) += 0.1 * model.normalization.scale;
+  const SeamGap after = seam_gap(model, shifted);
+  EXPECT_GE(after.mean, 0.1 - before.max - 1e-12);
+  EXPECT_LE(after.max, 0.1 + before.max + 1e-12);
 }
 
 TEST(Registration, AFrameOnTheHandleLandsOnTheHeldOutHandle) {

@@ -37,7 +37,7 @@ TEST(RealMugFigures, HandleSpaceAtTwoSdAndOverlayComparison) {
     core::RegistrationSettings settings;
     settings.variant = variant;
     const core::RegistrationResult result = core::register_observation(model, observed, settings);
-    overlays.panels.push_back(render::overlay_panel(model, observed, result, core::to_string(variant)));
+    overlays.panels.push_back(render::overlay_panel(model, observed, result, core::enum_name(variant)));
   }
   overlays.columns = 2;
   testing::expect_matches_baseline(render::render_grid(overlays, panels(render::View::iso, 360, 300)),

@@ -6,6 +6,7 @@
 #include "partreg/core/errors.hpp"
 #include "partreg/core/gaussian_kernel.hpp"
 #include "partreg/core/kdtree.hpp"
+#include "partreg/core/sampling.hpp"
 
 namespace partreg::core {
 namespace {
@@ -96,6 +97,34 @@ Mesh deform_mesh(const CategoryModel& model, const RegistrationResult& result, c
       deform_points(model, result, model.normalization.undo(model.canonical_mesh.vertices), blend);
   mesh.faces = model.canonical_mesh.faces;
   return mesh;
+}
+
+SeamGap seam_gap(const CategoryModel& model, const RegistrationResult& result, double radius) {
+  SeamGap gap;
+  if (result.variant == Variant::holistic) return gap;
+  const std::vector<std::size_t> parts = active_spaces(result);
+  double total = 0.0;
+  for (std::size_t a = 0; a < parts.size(); ++a)
+    for (std::size_t b = 0; b < parts.size(); ++b) {
+      if (a == b) continue;
+      const SpaceFit& own = result.fits[parts[a]];
+      const SpaceFit& other = result.fits[parts[b]];
+      const Points& own_points = space_of(model, own).canonical;
+      const KdTree other_tree(space_of(model, other).canonical);
+      std::vector<int> boundary;
+      for (Eigen::Index i = 0; i < own_points.rows(); ++i)
+        if (other_tree.nearest(own_points.row(i).transpose()).second <= radius * radius)
+          boundary.push_back(static_cast<int>(i));
+      if (boundary.empty()) continue;
+      const Points z = select_rows(own_points, boundary);
+      const Eigen::VectorXd distance =
+          (moved_by(model, own, z) - moved_by(model, other, z)).rowwise().norm() / model.normalization.scale;
+      gap.max = std::max(gap.max, distance.maxCoeff());
+      total += distance.sum();
+      gap.points += static_cast<int>(distance.size());
+    }
+  if (gap.points > 0) gap.mean = total / gap.points;
+  return gap;
 }
 
 std::vector<Frame> transfer_frames(const CategoryModel& model, const RegistrationResult& result,

@@ -48,6 +48,19 @@ Points deform_points(const CategoryModel& model, const RegistrationResult& resul
 /// The canonical mesh deformed into the observed frame (same faces).
 Mesh deform_mesh(const CategoryModel& model, const RegistrationResult& result, const SeamBlend& blend = {});
 
+/// How far a registration's parts came apart: canonical points of one part within `radius` of another
+/// part's canonical points are boundary points; each is moved by both parts' fields and poses, and the gap is
+/// the distance between the two positions.
+struct SeamGap {
+  double max = 0.0;   ///< largest gap over the boundary points (fraction of the model's diagonal)
+  double mean = 0.0;  ///< mean gap (fraction of the model's diagonal)
+  int points = 0;     ///< boundary points measured (0: no part result, or no boundary)
+};
+
+/// The seam gap of a part-based result (boundary radius in normalised length; 0.03 is about one canonical
+/// point spacing at M = 1000). A holistic result has no seam: all zeros.
+SeamGap seam_gap(const CategoryModel& model, const RegistrationResult& result, double radius = 0.03);
+
 /// Frames carried over: the position moves like a point; the rotation turns by the local Jacobian of the
 /// deformation (I + dv/dz), orthonormalised by polar decomposition, and then by the pose.
 std::vector<Frame> transfer_frames(const CategoryModel& model, const RegistrationResult& result,
