@@ -2,6 +2,8 @@
 
 #include <gtest/gtest.h>
 
+#include <map>
+
 #include "partreg/core/deformation.hpp"
 #include "partreg/core/errors.hpp"
 #include "partreg/core/kdtree.hpp"
@@ -35,6 +37,10 @@ SyntheticSetup make_setup() {
       sample_correspondences(SyntheticCategory::mug, setup.mugs.back().shape_parameters, kSamples, 5);
   TrainingSettings settings;
   settings.canonical_points = 600;
+  // The frame measurement below was made without the floor of points per part. With the default floor the
+  // handle's 150 points improve hol+part's correspondences (0.018 -> 0.017 of the diagonal) and the frame's
+  // position (2.1% -> 1.7%) but turn its rotation further off (12 -> 17.5 degrees): docs/training.md.
+  settings.min_part_points = 0;
   setup.model = train_category("mugs", setup.training, {"body", "handle"}, settings);
   // Canonical points are rows of the canonical instance's samples: find which.
   const auto canonical = std::find_if(setup.training.begin(), setup.training.end(), [&](const auto& t) {
@@ -103,17 +109,56 @@ TEST(Registration, TheDeformedMeshFollowsTheDeformedPoints) {
   RegistrationSettings settings;
   settings.variant = Variant::hol_part;
   const RegistrationResult result = register_observation(setup().model, observed, settings);
-  // Eq. 4 applied to the canonical points themselves gives the registered points (blended only at seams).
-  const Points again =
-      deform_points(setup().model, result, setup().model.normalization.undo(setup().model.canonical));
-  const double diagonal = setup().model.normalization.scale;
-  EXPECT_LT((again - result.deformed).rowwise().norm().mean(), 0.005 * diagonal);
+  // Eq. 4 applied to the canonical points themselves gives the registered points where one part moves them
+  // alone (farther than the seam band from the other part's points) ...
+  const CategoryModel& model = setup().model;
+  const Points again = deform_points(model, result, model.normalization.undo(model.canonical));
+  const double diagonal = model.normalization.scale;
+  const KdTree body(model.space("body").canonical), handle(model.space("handle").canonical);
+  const double band = SeamBlend{}.band;
+  int alone = 0;
+  for (Eigen::Index i = 0; i < model.canonical.rows(); ++i) {
+    const KdTree& other = model.canonical_part[i] == 0 ? handle : body;
+    if (std::sqrt(other.nearest(model.canonical.row(i).transpose()).second) <= band) continue;
+    ++alone;
+    EXPECT_LT((again.row(i) - result.deformed.row(i)).norm(), 1e-9 * diagonal) << "canonical point " << i;
+  }
+  EXPECT_GT(alone, model.canonical.rows() / 4);
+  // ... and within the band, where both parts' motions blend, close to them (measured 0.7% on average).
+  EXPECT_LT((again - result.deformed).rowwise().norm().mean(), 0.01 * diagonal);
   // The held-out surface is close to the points: they are on it, not merely near the canonical.
   const KdTree surface(observed);
   std::vector<int> index;
   Eigen::VectorXd squared;
   surface.nearest_all(again, index, squared);
   EXPECT_LT(squared.cwiseSqrt().mean(), 0.02 * diagonal);
+}
+
+TEST(Registration, TheSeamGapMeasuresHowFarThePartsCameApart) {
+  const Points observed = transform(setup().held_out.points, known_pose());
+  const CategoryModel& model = setup().model;
+  std::map<Variant, SeamGap> gaps;
+  for (Variant variant : {Variant::holistic, Variant::partwise, Variant::hol_part}) {
+    RegistrationSettings settings;
+    settings.variant = variant;
+    gaps[variant] = seam_gap(model, register_observation(model, observed, settings));
+    std::cerr << enum_name(variant) << ": seam gap max " << gaps[variant].max << ", mean "
+              << gaps[variant].mean << " of the diagonal over " << gaps[variant].points
+              << " boundary points\n";
+  }
+  EXPECT_EQ(gaps[Variant::holistic].points, 0);  // one field: no seam
+  EXPECT_GT(gaps[Variant::hol_part].points, 0);
+  // Moving the handle's pose by 10% of the diagonal opens every boundary point by that much, give or take
+  // the gap it had (triangle inequality).
+  RegistrationSettings settings;
+  settings.variant = Variant::hol_part;
+  RegistrationResult shifted = register_observation(model, observed, settings);
+  const SeamGap before = seam_gap(model, shifted);
+  for (SpaceFit& fit : shifted.fits)
+    if (fit.space == "handle") fit.T_observed_canonical(0, 3) += 0.1 * model.normalization.scale;
+  const SeamGap after = seam_gap(model, shifted);
+  EXPECT_GE(after.mean, 0.1 - before.max - 1e-12);
+  EXPECT_LE(after.max, 0.1 + before.max + 1e-12);
 }
 
 TEST(Registration, AFrameOnTheHandleLandsOnTheHeldOutHandle) {

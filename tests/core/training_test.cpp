@@ -130,6 +130,47 @@ TEST(Training, KeepsEachInstancesFieldAndLatentsAndReportsMonotoneProgressToTheE
   for (const ShapeSpace& part : model.spaces) EXPECT_EQ(part.training_latents.rows(), 4);
 }
 
+int points_of_part(const CategoryModel& model, int part) {
+  return static_cast<int>((model.canonical_part.array() == part).count());
+}
+
+TEST(Training, EveryPartGetsItsFloorOfCanonicalPointsAndKeepsIt) {
+  std::vector<TrainingInstance> instances;
+  for (const auto& synthetic : make_synthetic_category(SyntheticCategory::mug, 3, 4))
+    instances.push_back(instance_of(synthetic, 800));
+  TrainingSettings settings;
+  settings.canonical_points = 100;
+  settings.target_points = 300;
+  settings.latent_dimensions = 2;
+  settings.min_part_points = 0;
+  const CategoryModel without = train_category("mugs", instances, {"body", "handle"}, settings);
+  settings.min_part_points = 40;
+  const CategoryModel with = train_category("mugs", instances, {"body", "handle"}, settings);
+  // Sampling the whole leaves the handle below the floor (the test needs that to mean anything) ...
+  ASSERT_LT(points_of_part(without, 1), 40);
+  // ... the floor gives it 40 of its own points and leaves the body's as they were.
+  EXPECT_EQ(points_of_part(with, 1), 40);
+  EXPECT_EQ(with.space("handle").point_count(), 40);
+  EXPECT_EQ(points_of_part(with, 0), points_of_part(without, 0));
+  EXPECT_EQ(with.training.min_part_points, 40);
+  EXPECT_EQ(with.training.canonical_points, with.canonical.rows());
+}
+
+TEST(Training, APartWithoutCanonicalPointsIsRefusedNamingIt) {
+  const auto synthetic = make_synthetic_category(SyntheticCategory::mug, 2, 1);
+  std::vector<TrainingInstance> instances = {instance_of(synthetic[0], 300), instance_of(synthetic[1], 300)};
+  TrainingSettings settings;
+  settings.canonical = instances[0].name;
+  try {  // "lid" is a part of the category, but no point of the canonical carries it
+    train_category("m", instances, {"body", "handle", "lid"}, settings);
+    FAIL() << "a part without canonical points was accepted";
+  } catch (const InputError& error) {
+    EXPECT_NE(std::string(error.what()).find("part 'lid' has no canonical point after sampling"),
+              std::string::npos)
+        << error.what();
+  }
+}
+
 TEST(Training, RefusesTooFewInstancesAndBadLabels) {
   const auto synthetic = make_synthetic_category(SyntheticCategory::mug, 2, 1);
   std::vector<TrainingInstance> one = {instance_of(synthetic[0], 300)};

@@ -91,6 +91,8 @@ TEST(ModelFile, SavesAndLoadsBitForBit) {
     EXPECT_EQ(read.spaces[s].training_latents, model.spaces[s].training_latents);
   }
   EXPECT_EQ(read.training.instances, model.training.instances);
+  EXPECT_EQ(read.training.min_part_points, 150);  // the sampling used: the default floor per part
+  EXPECT_EQ(read.training.canonical_points, model.canonical.rows());
   EXPECT_EQ(read.training_weights, model.training_weights);
   EXPECT_EQ(read.training_weights.rows(), 4);
   // Writing what was read gives the same bytes.

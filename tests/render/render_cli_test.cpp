@@ -144,7 +144,7 @@ TEST(FigureCommand, CompareAndSpaceOnASmallSyntheticModel) {
   ASSERT_EQ(compare.exit_code, 0) << compare.output;
   const render::Image figure = render::read_png(folder / "compare.png");
   EXPECT_EQ(figure.width, 2 * 320 + 8);  // two panels and the gap between them
-  EXPECT_EQ(figure.height, 180);
+  EXPECT_EQ(figure.height, 2 * 180 + 8);                          // side by side above, overlaid below
   EXPECT_GT(pixels_near(figure, render::observed_color()), 500);  // the observation in red
   EXPECT_GT(pixels_near(figure, render::part_color(1)), 100);     // the handle in its part colour
 

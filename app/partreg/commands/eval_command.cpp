@@ -149,7 +149,8 @@ nlohmann::json registration_json(const core::RegistrationSettings& settings) {
 void write_reports(const fs::path& folder, const std::vector<eval::EvalRow>& rows) {
   eval::write_rows_csv(folder / "results.csv", rows);
   std::ofstream tables(folder / "tables.md");
-  if (!(tables << eval::markdown_report(rows)).flush()) throw InputError("cannot write tables.md (disk full?)");
+  if (!(tables << eval::markdown_report(rows)).flush())
+    throw InputError("cannot write tables.md (disk full?)");
   for (const std::string& category : eval::categories_of(rows))
     for (bool partial : {false, true})
       eval::write_sweep_plot(folder / (category + (partial ? "_partial" : "_full") + "_sweeps.png"), rows,

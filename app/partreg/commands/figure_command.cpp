@@ -71,6 +71,7 @@ void run_compare(const FigureOptions& options) {
   const core::Points observed = read_points_logged(options.observed_path, options.observed_samples, 1);
   render::Grid grid;
   grid.columns = static_cast<int>(runs.size());
+  std::vector<render::Panel> overlays;  // the second row: each variant's fit over the observation
   for (const core::RegistrationSettings& run : runs) {
     const core::RegistrationResult result = core::register_observation(model, observed, run);
     const std::string variant = core::enum_name(result.variant);
@@ -79,7 +80,9 @@ void run_compare(const FigureOptions& options) {
     title << std::fixed << variant << ": mean fit " << 100.0 * result.fit.mean_normalised << "% of diagonal";
     std::cerr << title.str() << " (" << result.seconds << " s)\n";
     grid.panels.push_back(render::comparison_panel(model, observed, result, title.str(), settings.view));
+    overlays.push_back(render::overlay_panel(model, observed, result, variant + ": overlay"));
   }
+  for (render::Panel& overlay : overlays) grid.panels.push_back(std::move(overlay));
   write_figure(render::render_grid(grid, settings), options.out, start);
 }
 
@@ -113,7 +116,8 @@ void add_figure_command(CLI::App& app) {
 
   CLI::App* compare = figure->add_subcommand(
       "compare",
-      "Observed cloud (red) and each variant's deformed canonical (parts coloured), one panel each");
+      "Observed cloud (red) and each variant's deformed canonical (parts coloured), one column each: "
+      "side by side above, overlaid below");
   compare->add_option("MODEL", o->model_path, "model file from partreg train")->required();
   compare->add_option("OBSERVED", o->observed_path, "observed cloud or mesh")->required();
   compare

@@ -4,10 +4,23 @@
 
 #include "partreg/commands/commands.hpp"
 #include "partreg/commands/common.hpp"
+#include "partreg/core/space_walk.hpp"
 #include "partreg/io/model_file.hpp"
 
 namespace partreg::app {
 namespace {
+
+// The largest edge stretch of each space's walk over -2..+2 standard deviations (null without a mesh).
+nlohmann::json stretch_json(const core::CategoryModel& model) {
+  if (model.canonical_mesh.faces.rows() == 0) return nullptr;
+  nlohmann::json figures = nlohmann::json::array();
+  for (const core::SpaceStretch& figure : core::space_grid_stretch(model))
+    figures.push_back({{"space", figure.space},
+                       {"max_stretch", figure.max_stretch},
+                       {"direction", figure.direction},
+                       {"std_devs", figure.std_devs}});
+  return figures;
+}
 
 nlohmann::json describe(const core::CategoryModel& model) {
   const auto& record = model.training;
@@ -20,6 +33,7 @@ nlohmann::json describe(const core::CategoryModel& model) {
           {"centre",
            {model.normalization.centre.x(), model.normalization.centre.y(), model.normalization.centre.z()}},
           {"spaces", spaces_json(model)},
+          {"stretch", stretch_json(model)},
           {"training",
            {{"instances", record.instances},
             {"canonical", record.canonical},
@@ -45,6 +59,11 @@ void print(const nlohmann::json& info) {
     }
     std::cout << " (total " << std::round(cumulative * 1000) / 10 << "%)\n";
   }
+  for (const auto& figure : info["stretch"])
+    std::cout << "space " << figure["space"].get<std::string>() << ": largest mesh edge stretch "
+              << std::round(figure["max_stretch"].get<double>() * 100) / 100 << "x its canonical length "
+              << "over -2..+2 sd (PC" << figure["direction"].get<int>() + 1 << " at "
+              << figure["std_devs"].get<double>() << " sd)\n";
   const auto& training = info["training"];
   std::cout << "trained on " << training["instances"].size() << " instances " << training["instances"].dump()
             << ", canonical " << training["canonical"].get<std::string>() << " ("

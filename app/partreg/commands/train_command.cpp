@@ -6,12 +6,12 @@
 #include "partreg/commands/commands.hpp"
 #include "partreg/commands/common.hpp"
 #include "partreg/commands/registration_flags.hpp"
-#include "partreg/io/output_format.hpp"
 #include "partreg/core/errors.hpp"
 #include "partreg/core/parallel.hpp"
 #include "partreg/core/training.hpp"
 #include "partreg/io/dataset.hpp"
 #include "partreg/io/model_file.hpp"
+#include "partreg/io/output_format.hpp"
 
 namespace partreg::app {
 namespace {
@@ -59,6 +59,7 @@ void run_train(TrainOptions& options) {
   const core::ThreadBudget budget(options.threads);
   if (options.settings.latent_dimensions < 1) throw UsageError("--latent must be at least 1");
   if (options.settings.canonical_points < 10) throw UsageError("--points must be at least 10");
+  if (options.settings.min_part_points < 0) throw UsageError("--part-points must be zero or positive");
   if (!options.canonical.empty()) options.settings.canonical = options.canonical;
   io::check_output(options.out_path, io::OutputKind::model, "--out");
   io::check_output(options.json_path, io::OutputKind::json, "--json");
@@ -104,6 +105,11 @@ void add_train_command(CLI::App& app) {
   command->add_option("--points", options->settings.canonical_points, "canonical points M")
       ->capture_default_str()
       ->check(CLI::Range(10, 1000000));
+  command
+      ->add_option("--part-points", options->settings.min_part_points,
+                   "floor of canonical points per part (0: none)")
+      ->capture_default_str()
+      ->check(CLI::Range(0, 1000000));
   command->add_option("--samples", options->dataset.points_per_instance, "surface samples per mesh instance")
       ->capture_default_str()
       ->check(point_count_range());

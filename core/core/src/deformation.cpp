@@ -1,54 +1,41 @@
 #include "partreg/core/deformation.hpp"
 
 #include <Eigen/SVD>
+#include <algorithm>
 
 #include "partreg/core/errors.hpp"
 #include "partreg/core/gaussian_kernel.hpp"
 #include "partreg/core/kdtree.hpp"
+#include "partreg/core/sampling.hpp"
 
 namespace partreg::core {
 namespace {
 
-constexpr double kSeamWidth = 0.02;  // normalised: how far a part's field reaches into its neighbour's
-
 // The spaces whose fields move the points: holistic alone, or every part.
-std::vector<std::size_t> active_spaces(const CategoryModel& model, const RegistrationResult& result) {
+std::vector<std::size_t> active_spaces(const RegistrationResult& result) {
   std::vector<std::size_t> spaces;
   for (std::size_t f = 0; f < result.fits.size(); ++f)
     if (result.variant == Variant::holistic ? f == 0 : result.fits[f].space != "holistic")
       spaces.push_back(f);
   if (spaces.empty()) throw UsageError("the registration result holds no space to deform with");
-  (void)model;
   return spaces;
 }
 
 const ShapeSpace& space_of(const CategoryModel& model, const SpaceFit& fit) { return model.space(fit.space); }
 
-// Blend weights of each active space at each point: a Gaussian of the distance to that space's canonical
-// points.
 Eigen::MatrixXd blend_weights(const CategoryModel& model, const RegistrationResult& result,
-                              const std::vector<std::size_t>& spaces, const Points& normalised) {
-  Eigen::MatrixXd weights(normalised.rows(), static_cast<Eigen::Index>(spaces.size()));
-  for (std::size_t s = 0; s < spaces.size(); ++s) {
-    const KdTree tree(space_of(model, result.fits[spaces[s]]).canonical);
-    std::vector<int> index;
-    Eigen::VectorXd squared;
-    tree.nearest_all(normalised, index, squared);
-    weights.col(static_cast<Eigen::Index>(s)) = (-0.5 * squared.array() / (kSeamWidth * kSeamWidth)).exp();
-  }
-  // Points far from every part keep the nearest one's field rather than dividing by zero.
-  for (Eigen::Index i = 0; i < weights.rows(); ++i) {
-    const double total = weights.row(i).sum();
-    if (total > 1e-300) {
-      weights.row(i) /= total;
-    } else {
-      Eigen::Index best = 0;
-      weights.row(i).maxCoeff(&best);
-      weights.row(i).setZero();
-      weights(i, best) = 1.0;
-    }
-  }
-  return weights;
+                              const std::vector<std::size_t>& spaces, const Points& normalised,
+                              const SeamBlend& blend) {
+  std::vector<const ShapeSpace*> blended;
+  for (std::size_t s : spaces) blended.push_back(&space_of(model, result.fits[s]));
+  return seam_weights(blended, normalised, blend);
+}
+
+// 3t^2 - 2t^3 on [0, 1]: 0 and 1 with zero slope at both ends, so the weights have no kink at the band's
+// edge.
+double smoothstep(double t) {
+  t = std::clamp(t, 0.0, 1.0);
+  return t * t * (3.0 - 2.0 * t);
 }
 
 // One space's motion of normalised canonical points, ending in the observed data frame.
@@ -63,11 +50,40 @@ Points moved_by(const CategoryModel& model, const SpaceFit& fit, const Points& n
 
 }  // namespace
 
+Eigen::MatrixXd seam_weights(const std::vector<const ShapeSpace*>& spaces, const Points& normalised,
+                             const SeamBlend& blend) {
+  if (spaces.empty()) throw UsageError("seam blending needs at least one space");
+  if (!(blend.band >= 0.0)) throw UsageError("the seam band must be zero or positive");
+  const auto count = static_cast<Eigen::Index>(spaces.size());
+  Eigen::MatrixXd distance(normalised.rows(), count);
+  for (Eigen::Index s = 0; s < count; ++s) {
+    const KdTree tree(spaces[static_cast<std::size_t>(s)]->canonical);
+    std::vector<int> index;
+    Eigen::VectorXd squared;
+    tree.nearest_all(normalised, index, squared);
+    distance.col(s) = squared.cwiseSqrt();
+  }
+  Eigen::MatrixXd weights = Eigen::MatrixXd::Zero(normalised.rows(), count);
+  for (Eigen::Index i = 0; i < normalised.rows(); ++i) {
+    Eigen::Index nearest = 0;
+    const double closest = distance.row(i).minCoeff(&nearest);
+    if (blend.band == 0.0) {
+      weights(i, nearest) = 1.0;
+      continue;
+    }
+    // The nearest space weighs 1, so the sum is at least 1 and the division is safe.
+    for (Eigen::Index s = 0; s < count; ++s)
+      weights(i, s) = smoothstep(1.0 - (distance(i, s) - closest) / blend.band);
+    weights.row(i) /= weights.row(i).sum();
+  }
+  return weights;
+}
+
 Points deform_points(const CategoryModel& model, const RegistrationResult& result,
-                     const Points& canonical_points) {
+                     const Points& canonical_points, const SeamBlend& blend) {
   const Points normalised = model.normalization.apply(canonical_points);
-  const std::vector<std::size_t> spaces = active_spaces(model, result);
-  const Eigen::MatrixXd weights = blend_weights(model, result, spaces, normalised);
+  const std::vector<std::size_t> spaces = active_spaces(result);
+  const Eigen::MatrixXd weights = blend_weights(model, result, spaces, normalised, blend);
   Points moved = Points::Zero(canonical_points.rows(), 3);
   for (std::size_t s = 0; s < spaces.size(); ++s)
     moved += weights.col(static_cast<Eigen::Index>(s)).asDiagonal() *
@@ -75,16 +91,45 @@ Points deform_points(const CategoryModel& model, const RegistrationResult& resul
   return moved;
 }
 
-Mesh deform_mesh(const CategoryModel& model, const RegistrationResult& result) {
+Mesh deform_mesh(const CategoryModel& model, const RegistrationResult& result, const SeamBlend& blend) {
   Mesh mesh;
-  mesh.vertices = deform_points(model, result, model.normalization.undo(model.canonical_mesh.vertices));
+  mesh.vertices =
+      deform_points(model, result, model.normalization.undo(model.canonical_mesh.vertices), blend);
   mesh.faces = model.canonical_mesh.faces;
   return mesh;
 }
 
+SeamGap seam_gap(const CategoryModel& model, const RegistrationResult& result, double radius) {
+  SeamGap gap;
+  if (result.variant == Variant::holistic) return gap;
+  const std::vector<std::size_t> parts = active_spaces(result);
+  double total = 0.0;
+  for (std::size_t a = 0; a < parts.size(); ++a)
+    for (std::size_t b = 0; b < parts.size(); ++b) {
+      if (a == b) continue;
+      const SpaceFit& own = result.fits[parts[a]];
+      const SpaceFit& other = result.fits[parts[b]];
+      const Points& own_points = space_of(model, own).canonical;
+      const KdTree other_tree(space_of(model, other).canonical);
+      std::vector<int> boundary;
+      for (Eigen::Index i = 0; i < own_points.rows(); ++i)
+        if (other_tree.nearest(own_points.row(i).transpose()).second <= radius * radius)
+          boundary.push_back(static_cast<int>(i));
+      if (boundary.empty()) continue;
+      const Points z = select_rows(own_points, boundary);
+      const Eigen::VectorXd distance =
+          (moved_by(model, own, z) - moved_by(model, other, z)).rowwise().norm() / model.normalization.scale;
+      gap.max = std::max(gap.max, distance.maxCoeff());
+      total += distance.sum();
+      gap.points += static_cast<int>(distance.size());
+    }
+  if (gap.points > 0) gap.mean = total / gap.points;
+  return gap;
+}
+
 std::vector<Frame> transfer_frames(const CategoryModel& model, const RegistrationResult& result,
                                    const std::vector<Frame>& frames) {
-  const std::vector<std::size_t> spaces = active_spaces(model, result);
+  const std::vector<std::size_t> spaces = active_spaces(result);
   std::vector<Frame> moved;
   for (const Frame& frame : frames) {
     Points position(1, 3);
@@ -92,7 +137,7 @@ std::vector<Frame> transfer_frames(const CategoryModel& model, const Registratio
     const Points normalised = model.normalization.apply(position);
     // The rotation follows the space that dominates at the frame (no averaging of rotations).
     Eigen::Index dominant = 0;
-    blend_weights(model, result, spaces, normalised).row(0).maxCoeff(&dominant);
+    blend_weights(model, result, spaces, normalised, {}).row(0).maxCoeff(&dominant);
     const SpaceFit& fit = result.fits[spaces[static_cast<std::size_t>(dominant)]];
     const ShapeSpace& space = space_of(model, fit);
     const Eigen::Matrix3d jacobian =

@@ -170,10 +170,46 @@ std::size_t find_canonical(const std::vector<TrainingInstance>& instances, const
   throw UsageError("no instance named '" + *settings.canonical + "' (instances: " + names + ")");
 }
 
+// The rows of `part` in a labelled sample.
+std::vector<int> rows_with(const Eigen::VectorXi& part_of_row, int part) {
+  std::vector<int> rows;
+  for (Eigen::Index i = 0; i < part_of_row.size(); ++i)
+    if (part_of_row[i] == part) rows.push_back(static_cast<int>(i));
+  return rows;
+}
+
+// Replaces each part that has fewer than `floor` points in `sample` by a farthest-point sample of its own
+// rows of `dense` (floor points, or all it has), so small parts are not starved by sampling of the whole.
+Target with_part_floor(Target sample, const Target& dense, int part_count, int floor) {
+  for (int part = 0; part < part_count; ++part) {
+    const std::vector<int> own = rows_with(sample.part, part);
+    if (static_cast<int>(own.size()) >= floor) continue;
+    const std::vector<int> dense_rows = rows_with(dense.part, part);
+    if (dense_rows.empty()) continue;  // a part without surface samples is refused when its space is learned
+    const Points dense_part = select_rows(dense.points, dense_rows);
+    const auto wanted = std::min<std::size_t>(static_cast<std::size_t>(floor), dense_rows.size());
+    const Points added = select_rows(dense_part, farthest_point_indices(dense_part, wanted));
+    std::vector<int> kept;  // every row of the other parts
+    for (Eigen::Index i = 0; i < sample.part.size(); ++i)
+      if (sample.part[i] != part) kept.push_back(static_cast<int>(i));
+    Target topped{Points(static_cast<Eigen::Index>(kept.size()) + added.rows(), 3),
+                  Eigen::VectorXi(static_cast<Eigen::Index>(kept.size()) + added.rows())};
+    topped.points << select_rows(sample.points, kept), added;
+    topped.part << sample.part(kept), Eigen::VectorXi::Constant(added.rows(), part);
+    sample = std::move(topped);
+  }
+  return sample;
+}
+
 void set_canonical(CategoryModel& model, const TrainingInstance& canonical,
                    const TrainingSettings& settings) {
   model.normalization = Normalization::fit(canonical.points);
-  const Target sample = make_target(canonical, model.normalization, settings.canonical_points);
+  Target sample = make_target(canonical, model.normalization, settings.canonical_points);
+  if (model.has_parts() && settings.min_part_points > 0) {
+    const Target dense{model.normalization.apply(canonical.points), canonical.part};
+    sample =
+        with_part_floor(sample, dense, static_cast<int>(model.part_names.size()), settings.min_part_points);
+  }
   model.canonical = sample.points;
   model.canonical_part = model.has_parts() ? sample.part : Eigen::VectorXi::Zero(sample.points.rows());
   if (canonical.mesh.faces.rows() == 0) {
@@ -279,9 +315,13 @@ CategoryModel train_category(const std::string& category, const std::vector<Trai
     const std::vector<int> rows = model.part_rows(part);
     const Points canonical_part = select_rows(model.canonical, rows);
     if (canonical_part.rows() < 10)
-      throw InputError("part '" + part_names[part] + "' has only " + std::to_string(canonical_part.rows()) +
-                       " of the canonical's " + std::to_string(model.canonical.rows()) +
-                       " points (a part space needs 10): keep more canonical points or check the labels");
+      throw InputError("part '" + part_names[part] + "' has " +
+                       (canonical_part.rows() == 0
+                            ? std::string("no canonical point")
+                            : "only " + std::to_string(canonical_part.rows()) + " of the canonical's " +
+                                  std::to_string(model.canonical.rows()) + " points") +
+                       " after sampling (a part space needs 10): its labelled surface on '" + canonical.name +
+                       "' is too small; check the labels or keep more canonical points");
     std::vector<Points> part_weights;
     for (std::size_t i = 0; i < instances.size(); ++i) {
       if (i == canonical_index) {
@@ -305,6 +345,7 @@ CategoryModel train_category(const std::string& category, const std::vector<Trai
   record.canonical = canonical.name;
   record.canonical_choice = out.canonical_choice;
   record.canonical_points = static_cast<int>(m);
+  record.min_part_points = model.has_parts() ? settings.min_part_points : 0;
   record.beta = settings.beta;
   record.lambda = settings.lambda;
   record.outlier_weight = settings.outlier_weight;

@@ -3,12 +3,12 @@
 #include <cstring>
 #include <fstream>
 #include <iomanip>
-#include <set>
 #include <nlohmann/json.hpp>
+#include <set>
 #include <sstream>
 
-#include "partreg/core/errors.hpp"
 #include "json_values.hpp"
+#include "partreg/core/errors.hpp"
 #include "partreg/io/atomic_file.hpp"
 #include "partreg/io/read_limits.hpp"
 
@@ -87,6 +87,7 @@ nlohmann::json training_json(const core::TrainingRecord& record) {
           {"canonical", record.canonical},
           {"canonical_choice", record.canonical_choice},
           {"canonical_points", record.canonical_points},
+          {"min_part_points", record.min_part_points},
           {"beta", record.beta},
           {"lambda", record.lambda},
           {"outlier_weight", record.outlier_weight},
@@ -177,7 +178,8 @@ class ArrayReader {
         cols > kMaxExtent)
       fail("array '" + name + "' has an unexpected type or shape");
     // A column count fixed by the type (points are N x 3, vectors N x 1) must be the file's.
-    if (Matrix::ColsAtCompileTime != Eigen::Dynamic && cols != static_cast<std::uint64_t>(Matrix::ColsAtCompileTime))
+    if (Matrix::ColsAtCompileTime != Eigen::Dynamic &&
+        cols != static_cast<std::uint64_t>(Matrix::ColsAtCompileTime))
       fail("array '" + name + "' has " + std::to_string(cols) + " columns, not " +
            std::to_string(Matrix::ColsAtCompileTime));
     if (offset > blob_.size() || bytes > blob_.size() - offset)
@@ -197,7 +199,8 @@ class ArrayReader {
   template <typename Key>
   std::uint64_t count_at(const nlohmann::json& json, const Key& key, const std::string& name) const {
     const nlohmann::json& value = json.at(key);
-    if (!value.is_number_unsigned()) fail("array '" + name + "' has a negative or non-integer size or offset");
+    if (!value.is_number_unsigned())
+      fail("array '" + name + "' has a negative or non-integer size or offset");
     return value.get<std::uint64_t>();
   }
 
@@ -209,17 +212,18 @@ class ArrayReader {
 
 // Every member the header may have: a bit flipped in a name (the checksum's own included) is damage.
 void check_header_checksum(const nlohmann::json& header, const std::string& text, const std::string& file) {
-  static const std::set<std::string> known = {"format", "format_version", "partreg_version", "category",
-                                              "normalization", "part_names", "training", "spaces", "arrays",
-                                              "blob_bytes", "header_fnv1a64"};
+  static const std::set<std::string> known = {
+      "format",   "format_version", "partreg_version", "category",   "normalization", "part_names",
+      "training", "spaces",         "arrays",          "blob_bytes", "header_fnv1a64"};
   for (const auto& member : header.items())
     if (!known.count(member.key()))
       throw InputError("model file " + file + " is damaged (unknown header member '" + member.key() + "')");
   const std::size_t position = checksum_position(text);
-  if (!header.contains("header_fnv1a64") && position == std::string::npos) return;  // written before checksums
+  if (!header.contains("header_fnv1a64") && position == std::string::npos)
+    return;  // written before checksums
   if (position == std::string::npos || position + kHeaderChecksumDigits > text.size() ||
-      text.substr(position, kHeaderChecksumDigits) != hex16(fnv1a64(with_zero_checksum(text, position).data(),
-                                                                    text.size())))
+      text.substr(position, kHeaderChecksumDigits) !=
+          hex16(fnv1a64(with_zero_checksum(text, position).data(), text.size())))
     throw InputError("model file " + file + " is corrupted (checksum of its header does not match)");
 }
 
@@ -253,6 +257,9 @@ core::TrainingRecord training_from_json(const nlohmann::json& json) {
   record.canonical = json.at("canonical").get<std::string>();
   record.canonical_choice = json.at("canonical_choice").get<std::string>();
   record.canonical_points = detail::integer_of<int>(json.at("canonical_points"));
+  // Absent in files written before the floor.
+  record.min_part_points =
+      json.contains("min_part_points") ? detail::integer_of<int>(json.at("min_part_points")) : 0;
   record.beta = json.at("beta").get<double>();
   record.lambda = json.at("lambda").get<double>();
   record.outlier_weight = json.at("outlier_weight").get<double>();
@@ -312,16 +319,19 @@ core::CategoryModel read_model(const std::filesystem::path& path) {
   try {
     const nlohmann::json header = read_header(in, file, file_size);
     const nlohmann::json& blob_entry = header.at("blob_bytes");
-    if (!blob_entry.is_number_unsigned()) throw InputError("model file " + file + " has a malformed blob size");
+    if (!blob_entry.is_number_unsigned())
+      throw InputError("model file " + file + " has a malformed blob size");
     const auto blob_bytes = blob_entry.get<std::uint64_t>();
     const auto start = static_cast<std::uint64_t>(in.tellg());
     if (start > file_size || blob_bytes != file_size - start)
-      throw InputError("model file " + file + " is " + (blob_bytes > file_size - start ? "truncated" : "damaged") +
-                       ": its header describes " + std::to_string(blob_bytes) + " bytes of arrays, the file holds " +
-                       std::to_string(file_size - start));
+      throw InputError("model file " + file + " is " +
+                       (blob_bytes > file_size - start ? "truncated" : "damaged") +
+                       ": its header describes " + std::to_string(blob_bytes) +
+                       " bytes of arrays, the file holds " + std::to_string(file_size - start));
     std::string blob(blob_bytes, '\0');
     in.read(blob.data(), static_cast<std::streamsize>(blob_bytes));
-    if (!header.at("arrays").is_array()) throw InputError("model file " + file + " has a malformed array table");
+    if (!header.at("arrays").is_array())
+      throw InputError("model file " + file + " has a malformed array table");
     const ArrayReader arrays(header.at("arrays"), std::move(blob), file);
     core::CategoryModel model = model_from(header, arrays);
     model.validate();

@@ -147,6 +147,18 @@ Panel comparison_panel(const core::CategoryModel& model, const core::Points& obs
   return panel;
 }
 
+Panel overlay_panel(const core::CategoryModel& model, const core::Points& observed,
+                    const core::RegistrationResult& result, const std::string& title) {
+  Panel panel;
+  panel.title = title;
+  panel.scene = deformed_canonical(model, result);
+  PointSet observed_points;
+  observed_points.positions = observed;
+  observed_points.color = observed_color();
+  panel.scene.point_sets.push_back(observed_points);
+  return panel;
+}
+
 Grid shape_space_grid(const core::CategoryModel& model, const std::string& space_name,
                       const std::vector<double>& std_devs) {
   const core::ShapeSpace& space = model.space(space_name);

@@ -18,7 +18,8 @@ struct TrainingRecord {
   std::vector<std::string> instances;  ///< training instance names, in training order
   std::string canonical;               ///< name of the instance chosen as canonical
   std::string canonical_choice;        ///< "given" or how it was chosen automatically
-  int canonical_points = 0;            ///< M
+  int canonical_points = 0;            ///< M (with every part's floor applied)
+  int min_part_points = 0;             ///< floor of canonical points per part used (0: none, older files)
   double beta = 0.0;                   ///< CPD kernel width (normalised units)
   double lambda = 0.0;                 ///< CPD smoothness weight (unitless)
   double outlier_weight = 0.0;         ///< CPD w

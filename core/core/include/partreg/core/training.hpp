@@ -30,6 +30,11 @@ struct TrainingSettings {
   int canonical_points =
       1000;                  ///< M, canonical points kept by farthest-point sampling (clamped to what exists)
   int target_points = 1500;  ///< instance points each CPD registers onto (farthest-point sampled)
+  /// Floor of canonical points per part: a part that farthest-point sampling of the whole gave fewer gets
+  /// this many of its own surface samples instead (farthest-point sampled within the part; all of them
+  /// when it has fewer), so a small part's space is learned and fitted from enough points. The real mug's
+  /// handle gets 150 instead of 61 of 1000 (docs/training.md). 0 turns the floor off.
+  int min_part_points = 150;
   int latent_dimensions = 5;  ///< q per space (clamped to K - 1 for K training instances)
   double beta = 0.3;          ///< CPD kernel width (normalised length); see docs/training.md for the choice
   double lambda = 3.0;        ///< CPD smoothness weight (unitless)

@@ -48,6 +48,11 @@ Image render_grid(const Grid& grid, const FigureSettings& settings);
 Panel comparison_panel(const core::CategoryModel& model, const core::Points& observed,
                        const core::RegistrationResult& result, const std::string& title, View view);
 
+/// The overlay of one registration (the paper's Figures 4 and 6): the deformed canonical coloured by part
+/// and the observed points in red in one frame, so where the fit misses the observation shows directly.
+Panel overlay_panel(const core::CategoryModel& model, const core::Points& observed,
+                    const core::RegistrationResult& result, const std::string& title);
+
 /// The shapes of `space` (holistic or a part's name) along each principal direction, one row per direction,
 /// one column per value in `std_devs` (multiples of that direction's standard deviation; others at 0).
 /// A part space is shown with the other parts at their mean shape. Shapes are in the category's data frame.

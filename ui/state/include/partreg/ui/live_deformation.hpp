@@ -1,18 +1,20 @@
 #pragma once
 /// \file
-/// The canonical mesh deformed live by a shape space (paper Eq. 4): v(z) = G(z, C) W(x) with
-/// W(x) = mean + basis x. G(V, C) times the mean and each basis field is computed once per space, so a
+/// The canonical mesh deformed live by the shape spaces (paper Eq. 4, core::SpaceWalk: parts blended at
+/// their seams exactly as `figure space` and registration results are). Each walk is prepared once, so a
 /// slider move costs one small matrix product per vertex (no kernel evaluations).
 
 #include <Eigen/Core>
 #include <map>
+#include <optional>
 #include <vector>
 
 #include "partreg/core/category_model.hpp"
+#include "partreg/core/space_walk.hpp"
 
 namespace partreg::ui {
 
-/// Per space: the displacement of its mesh vertices for the mean and for each unit latent.
+/// The holistic walk and the parts' walk of the canonical mesh, each prepared when first used.
 class LiveDeformation {
  public:
   LiveDeformation() = default;
@@ -20,7 +22,7 @@ class LiveDeformation {
   explicit LiveDeformation(const core::CategoryModel* model);
 
   /// The canonical mesh's vertices (normalised units) deformed by the holistic space at `latents[0]`
-  /// when `holistic` is true, else each part's vertices by its own space at `latents[1 + part]`.
+  /// when `holistic` is true, else by every part's space at `latents[1 + part]`, blended at the seams.
   /// `latents[s]` holds space s's latent (its length is that space's dimensions).
   core::Points deform(const std::vector<Eigen::VectorXd>& latents, bool holistic);
 
@@ -30,15 +32,8 @@ class LiveDeformation {
   const core::Points& fitted_instance(int instance);
 
  private:
-  struct SpaceCache {
-    bool ready = false;
-    std::vector<int> vertices;   ///< mesh vertices this space moves
-    Eigen::MatrixXd mean;        ///< vertices x 3
-    Eigen::MatrixXd per_latent;  ///< (vertices * 3) x q, row-major per vertex
-  };
-  void prepare(int space);
   const core::CategoryModel* model_ = nullptr;
-  std::vector<SpaceCache> caches_;
+  std::optional<core::SpaceWalk> holistic_, parts_;
   std::map<int, core::Points> instances_;
 };
 
