@@ -9,6 +9,7 @@ packages=(
   libgtest-dev libgmock-dev libbenchmark-dev
   libembree-dev libtbb-dev libcairo2-dev libstb-dev
   libosmesa6-dev libglfw3-dev libimgui-dev python3-glad xvfb xauth
+  pybind11-dev python3-dev python3-pytest python3-numpy python3-open3d
 )
 missing=()
 for package in "${packages[@]}"; do

@@ -7,6 +7,7 @@
 
 #include "partreg/core/errors.hpp"
 #include "partreg/io/atomic_file.hpp"
+#include "partreg/version.hpp"
 
 namespace partreg::io {
 namespace {
