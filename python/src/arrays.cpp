@@ -36,9 +36,13 @@ py::array checked_array(const py::handle& object, const std::string& what, const
   return array;
 }
 
+// pybind11 marks views of const memory read-only; a result's own views are made writeable here.
 py::array with_access(py::array array, Access access) {
+  auto& flags = py::detail::array_proxy(array.ptr())->flags;
   if (access == Access::read_only)
-    py::detail::array_proxy(array.ptr())->flags &= ~py::detail::npy_api::NPY_ARRAY_WRITEABLE_;
+    flags &= ~py::detail::npy_api::NPY_ARRAY_WRITEABLE_;
+  else
+    flags |= py::detail::npy_api::NPY_ARRAY_WRITEABLE_;
   return array;
 }
 
