@@ -310,3 +310,37 @@ def test_registration_releases_the_interpreter_lock(partreg, model, observed_mug
     seconds = outcome["result"].seconds
     assert seconds > 0.1, "the registration is long enough for the check to mean something"
     assert resumed < 0.5 * seconds, f"this thread ran again only after {resumed:.3f} s of a {seconds:.3f} s call"
+
+
+def test_type_stub_matches_the_module(partreg):
+    # The stub names every public function and class, with the module's own parameter names and defaults
+    # (pybind11 writes each function's signature as the first line of its docstring).
+    import ast
+    import pathlib
+    stub = ast.parse((pathlib.Path(partreg.__file__).parent / "__init__.pyi").read_text())
+    stubbed = {node.name: node for node in stub.body if isinstance(node, (ast.FunctionDef, ast.ClassDef))}
+    public = [name for name in dir(partreg) if not name.startswith("_") and name not in ("model_format_version",)]
+    assert sorted(set(public) - set(stubbed)) == [], "public names missing from __init__.pyi"
+
+    def parameters(function):
+        arguments = function.args
+        positional = arguments.posonlyargs + arguments.args
+        defaults = [None] * (len(positional) - len(arguments.defaults)) + list(arguments.defaults)
+        named = [(a.arg, ast.unparse(d) if d is not None else None) for a, d in zip(positional, defaults)]
+        named += [(a.arg, ast.unparse(d) if d is not None else None)
+                  for a, d in zip(arguments.kwonlyargs, arguments.kw_defaults)]
+        return named + ([("**" + arguments.kwarg.arg, None)] if arguments.kwarg else [])
+
+    for name, node in stubbed.items():
+        member = getattr(partreg, name, None)
+        if not isinstance(node, ast.FunctionDef) or not callable(member):
+            continue
+        signature = member.__doc__.splitlines()[0].split(" -> ")[0]
+        compiled = ast.parse(f"def {signature}: pass").body[0]
+        mine = [(n, d) for n, d in parameters(compiled)]
+        theirs = [(n if not n.startswith("**") else "**", d) for n, d in parameters(node)]
+        mine = [(n if not n.startswith("**") else "**", d) for n, d in mine]
+        assert [n for n, _ in theirs] == [n for n, _ in mine], f"{name}: parameters differ"
+        for (parameter, stub_default), (_, module_default) in zip(theirs, mine):
+            if module_default is not None and stub_default is not None:
+                assert ast.literal_eval(stub_default) == ast.literal_eval(module_default), f"{name}({parameter})"
