@@ -30,7 +30,7 @@ for variant in holistic partwise hol+part; do
 done
 echo "variant     Eq.5 error (normalised)   mean fit (of the diagonal)   seconds" >&2
 for variant in holistic partwise hol+part; do
-  eq5=$(grep -o '"eq5_normalised": [^,]*' "$out/registered_${variant}.json" | cut -d' ' -f2)
+  eq5=$(grep -o '"eq5_per_diagonal2": [^,]*' "$out/registered_${variant}.json" | cut -d' ' -f2)
   fit=$(grep -o '"mean_normalised": [^,]*' "$out/registered_${variant}.json" | cut -d' ' -f2)
   seconds=$(grep -o '^  "seconds": [^,]*' "$out/registered_${variant}.json" | cut -d' ' -f4)
   printf '%-11s %-25s %-28s %s\n' "$variant" "$eq5" "$fit" "$seconds" >&2

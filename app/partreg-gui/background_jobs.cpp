@@ -44,7 +44,7 @@ void BackgroundRegistration::start(ui::AppState& state, const ui::Command& comma
   if (!job_) return;
   running_ = std::async(std::launch::async, [job = *job_] { return job.run(); });
   started_ = std::chrono::steady_clock::now();
-  report(state, "registering (" + core::to_string(job_->settings.variant) + ")...", false);
+  report(state, "registering (" + core::enum_name(job_->settings.variant) + ")...", false);
 }
 
 void BackgroundRegistration::collect(ui::AppState& state) {
@@ -53,7 +53,7 @@ void BackgroundRegistration::collect(ui::AppState& state) {
     const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - started_).count();
     char text[96];
     std::snprintf(text, sizeof text, "registering (%s)... %.1f s",
-                  core::to_string(job_->settings.variant).c_str(), seconds);
+                  core::enum_name(job_->settings.variant).c_str(), seconds);
     report(state, text, false);
     return;
   }

@@ -71,7 +71,7 @@ int main(int argc, char** argv) {
     if (std::sscanf(size.c_str(), "%dx%d", &options.width, &options.height) != 2 || options.width < 64 ||
         options.height < 64)
       throw partreg::UsageError("--size must be WIDTHxHEIGHT, at least 64x64");
-    options.antialiasing = partreg::render::parse_antialiasing(antialiasing);
+    options.antialiasing = partreg::core::parse_enum<partreg::render::Antialiasing>(antialiasing);
     return partreg::app::run(options);
   } catch (const CLI::ParseError& error) {
     return app.exit(error);

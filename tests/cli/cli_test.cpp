@@ -132,7 +132,7 @@ TEST_F(Cli, RegisterWritesItsOutputsAndRefusesBadInput) {
     EXPECT_TRUE(std::filesystem::exists(dir / file)) << file;
   std::ifstream json(dir / "r.json");
   const std::string text{std::istreambuf_iterator<char>(json), {}};
-  for (const char* key : {"T_observed_canonical", "latent", "eq5_normalised", "p90", "\"handle\""})
+  for (const char* key : {"T_observed_canonical", "latent", "eq5_per_diagonal2", "p90", "\"handle\""})
     EXPECT_NE(text.find(key), std::string::npos) << key;
 
   write("few.xyz", "0 0 0\n1 0 0\n0 1 0\n0 0 1\n1 1 1\n");

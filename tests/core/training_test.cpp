@@ -28,7 +28,7 @@ TEST(Synthetic, IsDeterministicAndVariesWithTheSeed) {
   EXPECT_EQ(a.parts[2].mesh.vertices, b.parts[2].mesh.vertices);
   EXPECT_EQ(part_names(SyntheticCategory::spray_bottle),
             (std::vector<std::string>{"body", "neck", "trigger"}));
-  EXPECT_THROW(parse_synthetic_category("teapot"), UsageError);
+  EXPECT_THROW(parse_enum<SyntheticCategory>("teapot"), UsageError);
 }
 
 TEST(Synthetic, CorrespondencesLieOnTheSurfaceAndMeanTheSamePlace) {

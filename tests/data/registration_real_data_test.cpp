@@ -2,9 +2,9 @@
 // rotation and a translation of 3% of the diagonal. The result must beat rigid alignment of the mean shape.
 #include <gtest/gtest.h>
 
-#include "partreg/core/metrics.hpp"
 #include "partreg/core/registration.hpp"
 #include "partreg/core/training.hpp"
+#include "partreg/core/truth_errors.hpp"
 #include "partreg/io/dataset.hpp"
 #include "support/shared_data.hpp"
 #include "support/test_shapes.hpp"
@@ -34,7 +34,7 @@ LeaveOneOut leave_out(const std::string& folder, std::size_t held_out) {
 void expect_better_than_rigid_mean(const LeaveOneOut& setup, const std::vector<core::Variant>& variants) {
   const double scale2 = setup.model.normalization.scale * setup.model.normalization.scale;
   core::RegistrationSettings rigid;
-  rigid.prior_weight = 1e6;
+  rigid.objective.prior_weight = 1e6;
   const double rigid_error =
       core::closest_point_error(core::register_observation(setup.model, setup.observed, rigid).deformed,
                                 setup.observed) /
@@ -44,9 +44,9 @@ void expect_better_than_rigid_mean(const LeaveOneOut& setup, const std::vector<c
     settings.variant = variant;
     const auto result = core::register_observation(setup.model, setup.observed, settings);
     const double error = core::closest_point_error(result.deformed, setup.observed) / scale2;
-    std::cerr << setup.model.category << " " << core::to_string(variant) << ": Eq. 5 " << error
+    std::cerr << setup.model.category << " " << core::enum_name(variant) << ": Eq. 5 " << error
               << " (rigid mean shape " << rigid_error << ")\n";
-    EXPECT_LT(error, 0.9 * rigid_error) << core::to_string(variant);  // at least 10% better
+    EXPECT_LT(error, 0.9 * rigid_error) << core::enum_name(variant);  // at least 10% better
   }
 }
 

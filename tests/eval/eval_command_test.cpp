@@ -45,21 +45,21 @@ TEST(EvalCommand, QuickProtocolOnASyntheticCategoryWritesRowsTablesAndPlotsThatA
   // 2 tested instances x (1 full + 12 views + 3 observations x 4 kinds x 3 levels) x 3 variants.
   EXPECT_EQ(rows.size(), 2u * (13 + 36) * 3);
   for (const eval::EvalRow& row : rows) {
-    ASSERT_TRUE(row.errors.correspondence_normalised) << "synthetic data has ground-truth correspondences";
-    ASSERT_TRUE(std::isfinite(row.errors.eq5_normalised));
-    ASSERT_EQ(row.errors.part_eq5_normalised.size(), 2u);  // body, handle
+    ASSERT_TRUE(row.errors.correspondence_per_diagonal) << "synthetic data has ground-truth correspondences";
+    ASSERT_TRUE(std::isfinite(row.errors.eq5_per_diagonal2));
+    ASSERT_EQ(row.errors.part_eq5_per_diagonal2.size(), 2u);  // body, handle
   }
   // The tables are the CSV's means: Table 1 and Table 2 rows recomputed from the rows.
   const std::string tables = read_text(dir / "eval" / "tables.md");
   for (bool partial : {false, true}) {
     std::string line = "| mugs |";
     for (const char* variant : {"holistic", "partwise", "hol+part"})
-      line += " " + two_decimals(1e4 * eval::mean_eq5_normalised(rows, "mugs", variant, partial)) + " |";
+      line += " " + two_decimals(1e4 * eval::mean_eq5_per_diagonal2(rows, "mugs", variant, partial)) + " |";
     EXPECT_NE(tables.find(line), std::string::npos) << line << "\n" << tables;
   }
   // The registrations did something: a fully observed mug is matched far better than by chance
   // (a canonical mug dropped at the wrong place scores above 1e-2).
-  EXPECT_LT(eval::mean_eq5_normalised(rows, "mugs", "hol+part", false), 2e-3);
+  EXPECT_LT(eval::mean_eq5_per_diagonal2(rows, "mugs", "hol+part", false), 2e-3);
 }
 
 TEST(EvalCommand, BadInputIsRefusedAndNothingIsOverwritten) {

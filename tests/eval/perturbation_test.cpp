@@ -96,7 +96,7 @@ TEST(Perturbation, LevelsOutOfRangeAreRefused) {
   EXPECT_THROW(eval::perturb(points, eval::Perturbation::noise, -0.1, 1.0, 1), UsageError);
   EXPECT_THROW(eval::perturb(points, eval::Perturbation::rotation, 4.0, 1.0, 1), UsageError);
   EXPECT_THROW(eval::perturb(points, eval::Perturbation::outliers, std::nan(""), 1.0, 1), UsageError);
-  EXPECT_THROW(eval::parse_perturbation("shear"), UsageError);
+  EXPECT_THROW(core::parse_enum<eval::Perturbation>("shear"), UsageError);
 }
 
 }  // namespace

@@ -6,7 +6,7 @@
 #include <fstream>
 
 #include "partreg/core/errors.hpp"
-#include "partreg/eval/metrics.hpp"
+#include "partreg/core/truth_errors.hpp"
 #include "support/temp_dir.hpp"
 
 namespace partreg {
@@ -22,27 +22,27 @@ TEST(RegistrationErrors, MatchTheHandComputedValues) {
   core::Points true_rows(2, 3);
   true_rows << 0, 0, 0, 1, 0, 0;  // where the two deformed points should have been
   const double diagonal = 2.0;
-  const eval::RegistrationErrors e =
-      eval::measure_errors(deformed, part, {"body", "handle"}, truth, diagonal, &true_rows);
+  const core::TruthErrors e =
+      core::measure_against_truth(deformed, part, {"body", "handle"}, truth, diagonal, &true_rows);
   EXPECT_DOUBLE_EQ(e.eq5, (0.25 + 1.0) / 2);  // Eq. 5: mean squared closest-point distance
-  EXPECT_DOUBLE_EQ(e.eq5_normalised, 0.625 / 4);
-  EXPECT_DOUBLE_EQ(e.part_eq5_normalised.at("body"), 0.25 / 4);
-  EXPECT_DOUBLE_EQ(e.part_eq5_normalised.at("handle"), 1.0 / 4);
+  EXPECT_DOUBLE_EQ(e.eq5_per_diagonal2, 0.625 / 4);
+  EXPECT_DOUBLE_EQ(e.part_eq5_per_diagonal2.at("body"), 0.25 / 4);
+  EXPECT_DOUBLE_EQ(e.part_eq5_per_diagonal2.at("handle"), 1.0 / 4);
   // Chamfer: deformed->truth (0.5 + 1) / 2; truth->deformed (0.5 + sqrt(1.25) + 1) / 3; halved sum.
   const double chamfer = ((0.5 + 1.0) / 2 + (0.5 + std::sqrt(1.25) + 1.0) / 3) / 2;
   EXPECT_NEAR(e.chamfer, chamfer, 1e-12);
-  EXPECT_NEAR(e.chamfer_normalised, chamfer / 2, 1e-12);
-  ASSERT_TRUE(e.correspondence_normalised);
-  EXPECT_NEAR(*e.correspondence_normalised, (0.5 + std::sqrt(2.0)) / 2 / 2, 1e-12);
-  EXPECT_THROW(eval::measure_errors(core::Points(0, 3), part, {}, truth, 1.0), InputError);
+  EXPECT_NEAR(e.chamfer_per_diagonal, chamfer / 2, 1e-12);
+  ASSERT_TRUE(e.correspondence_per_diagonal);
+  EXPECT_NEAR(*e.correspondence_per_diagonal, (0.5 + std::sqrt(2.0)) / 2 / 2, 1e-12);
+  EXPECT_THROW(core::measure_against_truth(core::Points(0, 3), part, {}, truth, 1.0), InputError);
 }
 
 eval::EvalRow row(const std::string& variant, int view, eval::Perturbation kind, int level, double eq5) {
   eval::EvalRow r;
   r.category = "mugs", r.instance = "mug_1", r.canonical = "mug_0", r.variant = variant, r.view = view;
   r.perturbation = kind, r.level_index = level, r.diagonal = 0.3;
-  r.errors.eq5_normalised = eq5, r.errors.eq5 = eq5 * 0.09;
-  r.errors.part_eq5_normalised = {{"body", eq5 / 2}, {"handle", eq5 * 2}};
+  r.errors.eq5_per_diagonal2 = eq5, r.errors.eq5 = eq5 * 0.09;
+  r.errors.part_eq5_per_diagonal2 = {{"body", eq5 / 2}, {"handle", eq5 * 2}};
   return r;
 }
 
@@ -52,19 +52,19 @@ TEST(EvalReport, CsvRoundTripsAndTablesShowTheMeans) {
                                      row("hol+part", -1, eval::Perturbation::none, -1, 3e-4),
                                      row("holistic", 3, eval::Perturbation::none, -1, 9e-4),
                                      row("holistic", -1, eval::Perturbation::noise, 2, 7e-4)};
-  rows[2].errors.correspondence_normalised = 0.012;
+  rows[2].errors.correspondence_per_diagonal = 0.012;
   testing::TempDir dir;
   eval::write_rows_csv(dir / "r.csv", rows);
   const std::vector<eval::EvalRow> back = eval::read_rows_csv(dir / "r.csv");
   ASSERT_EQ(back.size(), rows.size());
-  EXPECT_DOUBLE_EQ(back[1].errors.eq5_normalised, 6e-4);
-  EXPECT_DOUBLE_EQ(back[0].errors.part_eq5_normalised.at("handle"), 8e-4);
+  EXPECT_DOUBLE_EQ(back[1].errors.eq5_per_diagonal2, 6e-4);
+  EXPECT_DOUBLE_EQ(back[0].errors.part_eq5_per_diagonal2.at("handle"), 8e-4);
   EXPECT_EQ(back[4].perturbation, eval::Perturbation::noise);
-  EXPECT_TRUE(back[2].errors.correspondence_normalised);
-  EXPECT_FALSE(back[0].errors.correspondence_normalised);
+  EXPECT_TRUE(back[2].errors.correspondence_per_diagonal);
+  EXPECT_FALSE(back[0].errors.correspondence_per_diagonal);
 
-  EXPECT_DOUBLE_EQ(eval::mean_eq5_normalised(back, "mugs", "holistic", false), 5e-4);  // full, clean only
-  EXPECT_DOUBLE_EQ(eval::mean_eq5_normalised(back, "mugs", "holistic", true), 9e-4);
+  EXPECT_DOUBLE_EQ(eval::mean_eq5_per_diagonal2(back, "mugs", "holistic", false), 5e-4);  // full, clean only
+  EXPECT_DOUBLE_EQ(eval::mean_eq5_per_diagonal2(back, "mugs", "holistic", true), 9e-4);
   const std::string tables = eval::markdown_report(back);
   EXPECT_NE(tables.find("| mugs | 5.00 | 3.00 |"), std::string::npos) << tables;  // Table 1 (x 1e4)
   EXPECT_NE(tables.find("| mugs | 9.00 | - |"), std::string::npos) << tables;     // Table 2

@@ -49,7 +49,7 @@ TEST(Renderer, SplatsColouredByPartFromEachNamedView) {
   HeadlessRenderer renderer(small());
   const Scene scene = mug_scene();
   for (const char* view : {"iso", "front", "side", "top"}) {
-    const Image image = renderer.render(scene, parse_view(view));
+    const Image image = renderer.render(scene, core::parse_enum<render::View>(view));
     EXPECT_GT(covered_fraction(image), 0.05) << view;
     expect_matches_baseline(image, std::string("splats_mug_parts_") + view);
   }

@@ -74,7 +74,7 @@ TEST(Camera, BadCamerasAndNamesAreUsageErrors) {
   camera.eye = Eigen::Vector3d(0, 2, 0);
   camera.up = Eigen::Vector3d::UnitY();
   EXPECT_THROW(camera.view_matrix(), UsageError);
-  EXPECT_THROW(parse_view("diagonal"), UsageError);
+  EXPECT_THROW(core::parse_enum<render::View>("diagonal"), UsageError);
 }
 
 TEST(Scene, BoundsAndEmptiness) {

@@ -84,8 +84,8 @@ TEST(RegistrationStepper, SavesTheResultFilesAsPartregRegisterDoes) {
     EXPECT_TRUE(std::filesystem::exists(folder / name)) << name;
   const nlohmann::json result = nlohmann::json::parse(std::ifstream(folder / "result.json"));
   EXPECT_EQ(result["variant"], "partwise");
-  EXPECT_EQ(result["direction"], "symmetric");
-  EXPECT_EQ(result["loss"], "cauchy");
+  EXPECT_EQ(result["settings"]["direction"], "symmetric");
+  EXPECT_EQ(result["settings"]["loss"], "cauchy");
   EXPECT_EQ(result["spaces"].size(), state.registration.result->fits.size());
   const io::CloudFile points = io::read_cloud_file(folder / "points.ply");
   EXPECT_EQ(points.cloud.points.rows(), state.shapes.model->canonical.rows());

@@ -2,7 +2,13 @@
 
 #include <gtest/gtest.h>
 
+#include <fstream>
+#include <regex>
+#include <set>
+
 #include "partreg/core/errors.hpp"
+#include "partreg/core/registration_options.hpp"
+#include "partreg/ui/executor.hpp"
 
 namespace partreg::ui {
 namespace {
@@ -55,6 +61,34 @@ TEST(Script, MissingFileIsAnInputError) { EXPECT_THROW(read_script("/nonexistent
 TEST(Script, EveryVerbHasASynopsis) {
   EXPECT_GE(command_synopses().size(), 30u);
   for (const auto& [verb, synopsis] : command_synopses()) EXPECT_FALSE(verb.empty());
+}
+
+// docs/gui.md's table of commands names every verb of the registry, and only those.
+TEST(Script, TheDocsTableListsExactlyTheRegisteredVerbs) {
+  std::ifstream file(std::string(PARTREG_SOURCE_DIR) + "/docs/gui.md");
+  ASSERT_TRUE(file) << "docs/gui.md not found";
+  std::set<std::string> documented;
+  const std::regex verb_in_cell(R"(`([a-z_]+)[ `])");
+  for (std::string line; std::getline(file, line);) {
+    if (line.rfind("| `", 0) != 0) continue;
+    const std::string first_cell = line.substr(0, line.find(" | ", 2));
+    for (std::sregex_iterator it(first_cell.begin(), first_cell.end(), verb_in_cell), end; it != end; ++it)
+      documented.insert((*it)[1]);
+  }
+  std::set<std::string> registered;
+  for (const Verb& verb : verbs()) registered.insert(verb.name);
+  EXPECT_EQ(documented, registered);
+}
+
+// The register verb accepts every registration setting by its option name, and the variant as its argument.
+TEST(Script, RegisterTakesEveryRegistrationSetting) {
+  const Verb* registration = find_verb("register");
+  ASSERT_NE(registration, nullptr);
+  for (const core::RegistrationOption& option : core::registration_options()) {
+    const bool accepted = std::find(registration->options.begin(), registration->options.end(),
+                                    option.name) != registration->options.end();
+    EXPECT_EQ(accepted, option.name != "variant") << option.name;
+  }
 }
 
 }  // namespace

@@ -6,8 +6,10 @@
 
 #include "partreg/commands/commands.hpp"
 #include "partreg/commands/common.hpp"
+#include "partreg/commands/registration_flags.hpp"
 #include "partreg/core/cpd.hpp"
 #include "partreg/core/errors.hpp"
+#include "partreg/core/parallel.hpp"
 #include "partreg/io/atomic_file.hpp"
 #include "partreg/io/cloud_io.hpp"
 
@@ -15,6 +17,7 @@ namespace partreg::app {
 namespace {
 
 struct CpdOptions {
+  int threads = 0;  // the command's thread budget
   std::string source_path;
   std::string target_path;
   std::string mode = "nonrigid";
@@ -88,6 +91,7 @@ Registered run_mode(const CpdOptions& options, const core::Points& source, const
 }
 
 void run_cpd(const CpdOptions& options) {
+  const core::ThreadBudget budget(options.threads);
   if (options.mode != "rigid" && options.mode != "affine" && options.mode != "nonrigid")
     throw UsageError("--mode must be rigid, affine or nonrigid, not '" + options.mode + "'");
   const core::Points source =
@@ -113,6 +117,7 @@ void add_cpd_command(CLI::App& app) {
   auto options = std::make_shared<CpdOptions>();
   CLI::App* command =
       app.add_subcommand("cpd", "Coherent Point Drift from SOURCE onto TARGET (clouds or meshes)");
+  add_threads_flag(command, options->threads);
   command->add_option("SOURCE", options->source_path, "cloud or mesh to move")
       ->required()
       ->check(CLI::ExistingFile);

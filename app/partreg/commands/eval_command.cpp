@@ -14,7 +14,10 @@
 
 #include "partreg/commands/commands.hpp"
 #include "partreg/commands/common.hpp"
+#include "partreg/commands/registration_flags.hpp"
 #include "partreg/core/errors.hpp"
+#include "partreg/core/parallel.hpp"
+#include "partreg/core/registration_options.hpp"
 #include "partreg/eval/protocol.hpp"
 #include "partreg/eval/report.hpp"
 #include "partreg/io/cloud_io.hpp"
@@ -28,8 +31,7 @@ using Clock = std::chrono::steady_clock;
 
 struct EvalOptions {
   std::string dataset_path, out_path, labels_path, canonical, protocol = "paper", shard = "1/1";
-  std::vector<std::string> variants = {"holistic", "partwise", "hol+part"};
-  std::string direction = "observed", loss = "huber";
+  std::vector<std::string> variants = core::enum_names<core::Variant>();
   bool no_viewpoint = false;
   int folds = -1, views = -1;
   std::vector<int> levels;  // 1-based indices of the paper's five levels; empty = the protocol's
@@ -121,13 +123,24 @@ void configure(EvalOptions& options) {
     }
   }
   settings.variants.clear();
-  for (const std::string& name : options.variants) settings.variants.push_back(core::parse_variant(name));
+  for (const std::string& name : options.variants) {
+    try {
+      settings.variants.push_back(core::parse_enum<core::Variant>(name));
+    } catch (const UsageError& error) {
+      throw UsageError(std::string("--variants: ") + error.what());
+    }
+  }
   if (settings.variants.empty()) throw UsageError("--variants needs at least one variant");
-  settings.registration.direction = core::parse_direction(options.direction);
-  settings.registration.loss = core::parse_loss(options.loss);
   settings.use_viewpoint = !options.no_viewpoint;
-  if (settings.threads < 0) throw UsageError("--threads must be 0 (all cores) or more");
   parse_shard(options.shard, settings);
+}
+
+// The registration settings every row used (its variant and viewpoint are the row's own).
+nlohmann::json registration_json(const core::RegistrationSettings& settings) {
+  nlohmann::json json = nlohmann::json::object();
+  for (const auto& [name, value] : core::registration_option_values(settings))
+    if (name != "variant" && name != "viewpoint") json[name] = value;
+  return json;
 }
 
 // results.csv, tables.md and the sweep plots of every category, into `folder`.
@@ -142,6 +155,7 @@ void write_reports(const fs::path& folder, const std::vector<eval::EvalRow>& row
 
 void run_eval(EvalOptions& options) {
   configure(options);
+  const core::ThreadBudget budget(options.settings.threads);  // training; registrations run in the arena
   StagedFolder folder(options.out_path);  // refuses a folder holding other files before any work
   const eval::EvalInput input = load_input(options);
   eval::tested_instances(input, options.settings);  // fails early on too few instances
@@ -157,6 +171,8 @@ void run_eval(EvalOptions& options) {
       {"protocol", options.protocol},
       {"shard", options.shard},
       {"threads", options.settings.threads},
+      {"variants", options.variants},
+      {"registration", registration_json(options.settings.registration)},
       {"registrations", rows.size()},
       {"seconds", seconds},
       {"mean_registration_seconds", rows.empty() ? 0.0 : registration_seconds / rows.size()}};
@@ -197,18 +213,19 @@ void add_eval_command(CLI::App& app) {
   command->add_option("--labels", o->labels_path, "labels file giving the canonical its parts");
   command->add_option("--canonical", o->canonical, "instance the labels belong to (default: from the file)");
   command->add_option("--protocol", o->protocol, "paper | quick")->capture_default_str();
-  command->add_option("--variants", o->variants, "holistic, partwise, hol+part")
+  command->add_option("--variants", o->variants, core::enum_choices<core::Variant>(", "))
       ->delimiter(',')
       ->capture_default_str();
-  command->add_option("--threads", o->settings.threads, "0 = all cores")->capture_default_str();
+  add_threads_flag(command, o->settings.threads);
   command->add_option("--folds", o->folds, "0 = leave-one-out (the protocol's choice by default)");
   command->add_option("--views", o->views, "partial views per instance: 0, 12, 42, 162, ...");
   command->add_option("--levels", o->levels, "which of the paper's five sweep levels (1-5), e.g. 1,3,5")
       ->delimiter(',');
   command->add_option("--shard", o->shard, "run only shard i of n (tested instances dealt round-robin)")
       ->capture_default_str();
-  command->add_option("--direction", o->direction, "canonical | observed | symmetric")->capture_default_str();
-  command->add_option("--loss", o->loss, "squared | huber | cauchy | trimmed")->capture_default_str();
+  // Every registration setting but the variant (one row per --variants entry) and the viewpoint (each
+  // partial view's own camera, unless --no-viewpoint).
+  add_registration_flags(command, o->settings.registration, {"variant", "viewpoint"});
   command->add_flag("--no-viewpoint", o->no_viewpoint, "do not tell the registration where the camera was");
   command->add_option("--samples", o->dataset.points_per_instance, "surface samples per mesh (the truth)")
       ->capture_default_str();

@@ -6,8 +6,10 @@
 #include <sstream>
 
 #include "partreg/commands/common.hpp"
+#include "partreg/commands/registration_flags.hpp"
 #include "partreg/commands/render_common.hpp"
 #include "partreg/core/errors.hpp"
+#include "partreg/core/parallel.hpp"
 #include "partreg/core/registration.hpp"
 #include "partreg/io/model_file.hpp"
 #include "partreg/render/figure.hpp"
@@ -20,17 +22,17 @@ struct FigureOptions {
   std::string size, view = "iso", background = "white";
   std::size_t observed_samples = 3000;
   std::string antialias = "msaa";
-  int restarts = 1;
-  bool align_axes = false, estimate_scale = false;
+  core::RegistrationSettings registration;  ///< every variant's settings but the variant itself
+  int threads = 0;
 };
 
 render::FigureSettings figure_settings(const FigureOptions& options, const std::string& default_size) {
   render::FigureSettings settings;
   std::tie(settings.panel_width, settings.panel_height) =
       parse_size(options.size.empty() ? default_size : options.size, "--size");
-  settings.view = render::parse_view(options.view);
-  settings.background = render::parse_background(options.background);
-  settings.antialiasing = render::parse_antialiasing(options.antialias);
+  settings.view = core::parse_enum<render::View>(options.view);
+  settings.background = core::parse_enum<render::Background>(options.background);
+  settings.antialiasing = core::parse_enum<render::Antialiasing>(options.antialias);
   return settings;
 }
 
@@ -54,22 +56,24 @@ void run_compare(const FigureOptions& options) {
   const render::FigureSettings settings = figure_settings(options, "640x360");
   std::vector<core::RegistrationSettings> runs;
   for (const std::string& variant : split_commas(options.variants)) {
-    core::RegistrationSettings run;
-    run.variant = core::parse_variant(variant);
-    run.restarts = options.restarts;
-    run.align_principal_axes = options.align_axes;
-    run.estimate_scale = options.estimate_scale;
+    core::RegistrationSettings run = options.registration;
+    try {
+      run.variant = core::parse_enum<core::Variant>(variant);
+    } catch (const UsageError& error) {
+      throw UsageError(std::string("--variants: ") + error.what());
+    }
     runs.push_back(run);
   }
   if (runs.empty()) throw UsageError("--variants names no variant");
   check_output_folder(options.out);
+  const core::ThreadBudget budget(options.threads);
   const core::CategoryModel model = io::read_model(options.model_path);
   const core::Points observed = read_points_logged(options.observed_path, options.observed_samples, 1);
   render::Grid grid;
   grid.columns = static_cast<int>(runs.size());
   for (const core::RegistrationSettings& run : runs) {
     const core::RegistrationResult result = core::register_observation(model, observed, run);
-    const std::string variant = core::to_string(result.variant);
+    const std::string variant = core::enum_name(result.variant);
     std::ostringstream title;
     title.precision(2);
     title << std::fixed << variant << ": mean fit " << 100.0 * result.fit.mean_normalised << "% of diagonal";
@@ -112,14 +116,13 @@ void add_figure_command(CLI::App& app) {
       "Observed cloud (red) and each variant's deformed canonical (parts coloured), one panel each");
   compare->add_option("MODEL", o->model_path, "model file from partreg train")->required();
   compare->add_option("OBSERVED", o->observed_path, "observed cloud or mesh")->required();
-  compare->add_option("--variants", o->variants, "comma-separated: holistic, partwise, hol+part")
+  compare
+      ->add_option("--variants", o->variants, "comma-separated: " + core::enum_choices<core::Variant>(", "))
       ->capture_default_str();
   compare->add_option("--points", o->observed_samples, "points sampled from an observed mesh")
       ->capture_default_str();
-  compare->add_option("--restarts", o->restarts, "initial rotations about the up axis")
-      ->capture_default_str();
-  compare->add_flag("--align-axes", o->align_axes, "start from principal-axis rotations (poses far off)");
-  compare->add_flag("--scale", o->estimate_scale, "also fit a uniform scale");
+  add_registration_flags(compare, o->registration, {"variant"});
+  add_threads_flag(compare, o->threads);
   add_shared_options(compare, *o, "640x360");
   compare->callback([o] { run_compare(*o); });
 

@@ -5,11 +5,12 @@
 
 #include "partreg/commands/commands.hpp"
 #include "partreg/commands/common.hpp"
+#include "partreg/commands/registration_flags.hpp"
 #include "partreg/core/deformation.hpp"
 #include "partreg/core/errors.hpp"
-#include "partreg/core/metrics.hpp"
-#include "partreg/core/part_selection.hpp"
+#include "partreg/core/parallel.hpp"
 #include "partreg/core/registration.hpp"
+#include "partreg/core/truth_errors.hpp"
 #include "partreg/io/cloud_io.hpp"
 #include "partreg/io/frames_file.hpp"
 #include "partreg/io/mesh_io.hpp"
@@ -19,14 +20,15 @@ namespace partreg::app {
 namespace {
 
 struct RegisterOptions {
-  std::string model_path, observed_path, variant = "holistic", json_path, points_out, mesh_out;
-  std::string frames_path, frames_out, viewpoint, direction = "observed", loss = "huber", truth_path;
+  std::string model_path, observed_path, json_path, points_out, mesh_out;
+  std::string frames_path, frames_out, truth_path;
   std::size_t mesh_samples = 3000;
+  int threads = 0;
   core::RegistrationSettings settings;
 };
 
 void write_outputs(const core::CategoryModel& model, const core::RegistrationResult& result,
-                   const RegisterOptions& options) {
+                   const std::vector<core::Frame>& frames, const RegisterOptions& options) {
   if (!options.points_out.empty()) {
     io::PointAttributes attributes;
     attributes.integers["part"] = result.part;
@@ -41,53 +43,47 @@ void write_outputs(const core::CategoryModel& model, const core::RegistrationRes
     std::cerr << "wrote " << options.mesh_out << '\n';
   }
   if (!options.frames_out.empty()) {
-    const auto frames = io::read_frames_file(options.frames_path);
     io::write_frames_file(options.frames_out, core::transfer_frames(model, result, frames));
     std::cerr << "wrote " << options.frames_out << '\n';
   }
 }
 
-// Errors against the ground-truth instance, in data units and normalised by the model's diagonal.
-nlohmann::json truth_errors(const core::CategoryModel& model, const core::RegistrationResult& result,
-                            const RegisterOptions& options) {
-  const core::Points truth = read_points_logged(options.truth_path, 20000, 2);
-  const double diagonal = model.normalization.scale;
-  const double eq5 = core::closest_point_error(result.deformed, truth);
-  const double chamfer = core::chamfer_distance(result.deformed, truth);
-  std::cerr << core::to_string(result.variant) << " against " << options.truth_path << ": Eq. 5 error " << eq5
-            << " (data units squared), " << eq5 / (diagonal * diagonal) << " normalised; Chamfer " << chamfer
-            << '\n';
-  return {{"file", options.truth_path},
-          {"eq5", eq5},
-          {"eq5_normalised", eq5 / (diagonal * diagonal)},
-          {"chamfer", chamfer},
-          {"chamfer_normalised", chamfer / diagonal}};
+// Errors against the ground-truth instance, normalised by its own diagonal (truth_errors.hpp).
+nlohmann::json truth_errors(const core::RegistrationResult& result,
+                            const std::vector<std::string>& part_names, const std::string& truth_path) {
+  const core::Points truth = read_points_logged(truth_path, 20000, 2);
+  const core::TruthErrors errors = core::measure_against_truth(result.deformed, result.part, part_names,
+                                                               truth, core::truth_diagonal(truth));
+  std::cerr << core::enum_name(result.variant) << " against " << truth_path << ": symmetric RMS "
+            << errors.symmetric_rms_per_diagonal << " of its diagonal; Eq. 5 " << errors.eq5
+            << " (data units squared), " << errors.eq5_per_diagonal2 << " of the diagonal squared; Chamfer "
+            << errors.chamfer << '\n';
+  nlohmann::json json = io::truth_errors_json(errors);
+  json["file"] = truth_path;
+  return json;
 }
 
-void run_register(RegisterOptions& options) {
-  options.settings.variant = core::parse_variant(options.variant);
-  options.settings.direction = core::parse_direction(options.direction);
-  options.settings.loss = core::parse_loss(options.loss);
-  if (!options.viewpoint.empty())
-    options.settings.viewpoint = core::parse_vector3(options.viewpoint, "--viewpoint");
-  if (options.settings.restarts < 1) throw UsageError("--restarts must be at least 1");
+void run_register(const RegisterOptions& options) {
   if (options.frames_out.empty() != options.frames_path.empty())
     throw UsageError("--frames and --frames-out go together");
-  if (!options.frames_path.empty())
-    io::read_frames_file(options.frames_path);  // refuse bad frames before working
+  const core::ThreadBudget budget(options.threads);
+  // Frames are read before the work, so bad frames are refused before anything runs.
+  const std::vector<core::Frame> frames =
+      options.frames_path.empty() ? std::vector<core::Frame>{} : io::read_frames_file(options.frames_path);
   const core::CategoryModel model = io::read_model(options.model_path);
   const core::Points observed = read_points_logged(options.observed_path, options.mesh_samples, 1);
   const core::RegistrationResult result = core::register_observation(model, observed, options.settings);
   for (const core::SpaceFit& fit : result.fits)
-    std::cerr << "space " << fit.space << ": " << fit.iterations << " steps, cost " << fit.cost << ", "
-              << fit.seconds << " s\n";
-  std::cerr << core::to_string(result.variant) << ": mean closest-point distance " << result.fit.mean
-            << " (data units), " << result.fit.mean_normalised << " of the diagonal; 90th percentile "
+    std::cerr << "space " << fit.space << ": " << fit.iterations << " steps ("
+              << core::enum_name(fit.stop_reason) << "), cost " << fit.cost << ", " << fit.seconds << " s\n";
+  std::cerr << core::enum_name(result.variant) << ": mean closest-point distance " << result.fit.mean
+            << " (data units), " << result.fit.mean_normalised << " of the model's diagonal; 90th percentile "
             << result.fit.p90 << "; " << result.seconds << " s\n";
   nlohmann::json report =
-      io::result_json(result, {options.model_path, options.observed_path, options.direction, options.loss});
-  if (!options.truth_path.empty()) report["truth"] = truth_errors(model, result, options);
-  write_outputs(model, result, options);
+      io::result_json(result, options.settings, {options.model_path, options.observed_path});
+  if (!options.truth_path.empty())
+    report["truth"] = truth_errors(result, model.part_names, options.truth_path);
+  write_outputs(model, result, frames, options);
   write_json_or_stdout(report, options.json_path);
 }
 
@@ -100,23 +96,15 @@ void add_register_command(CLI::App& app) {
   command->add_option("MODEL", o->model_path, "model file from partreg train")->required();
   command->add_option("OBSERVED", o->observed_path, "observed cloud or mesh (data units and frame)")
       ->required();
-  command->add_option("--variant", o->variant, "holistic | partwise | hol+part")->capture_default_str();
   command->add_option("--json", o->json_path, "result JSON ('-' for stdout)");
   command->add_option("--points-out", o->points_out, "PLY of the deformed canonical points with their part");
   command->add_option("--mesh-out", o->mesh_out, "the deformed canonical mesh (.obj or .ply)");
   command->add_option("--frames", o->frames_path, "frames attached to the canonical (JSON)");
   command->add_option("--frames-out", o->frames_out, "where the transferred frames go");
-  command->add_option("--viewpoint", o->viewpoint,
-                      "X,Y,Z camera position: only canonical points facing it count");
-  command->add_option("--restarts", o->settings.restarts, "initial rotations about the up axis")
-      ->capture_default_str();
-  command->add_option("--direction", o->direction, "canonical | observed | symmetric")->capture_default_str();
-  command->add_option("--loss", o->loss, "squared | huber | cauchy | trimmed")->capture_default_str();
-  command->add_flag("--scale", o->settings.estimate_scale, "also fit a uniform scale");
-  command->add_flag("--align-axes", o->settings.align_principal_axes,
-                    "start from the rotations that align principal axes (for poses far off)");
+  add_registration_flags(command, o->settings);
+  add_threads_flag(command, o->threads);
   command->add_option("--truth", o->truth_path,
-                      "ground-truth instance (cloud or mesh, observed frame): report Eq. 5 and Chamfer");
+                      "ground-truth instance (cloud or mesh, observed frame): report the errors against it");
   command->add_option("--samples", o->mesh_samples, "points sampled from an observed mesh")
       ->capture_default_str();
   command->callback([o] { run_register(*o); });

@@ -89,7 +89,8 @@ void add_file(render::Scene& scene, const std::string& path, int index, const Re
 }
 
 render::Camera camera_of(const RenderOptions& options, const render::Scene& scene, double aspect) {
-  render::Camera camera = render::fit_camera(scene.all_points(), render::parse_view(options.view), aspect);
+  render::Camera camera =
+      render::fit_camera(scene.all_points(), core::parse_enum<render::View>(options.view), aspect);
   if (options.eye.empty() != options.target.empty()) throw UsageError("--eye and --target go together");
   if (!options.eye.empty()) {
     camera.eye = parse_vector3(options.eye, "--eye");
@@ -106,9 +107,9 @@ void run_render(const RenderOptions& options) {
     throw UsageError("--color-by takes part, file or none, not '" + options.color_by + "'");
   render::RenderSettings settings;
   std::tie(settings.width, settings.height) = parse_size(options.size, "--size");
-  settings.antialiasing = render::parse_antialiasing(options.antialias);
-  settings.background = render::parse_background(options.background);
-  render::parse_view(options.view);
+  settings.antialiasing = core::parse_enum<render::Antialiasing>(options.antialias);
+  settings.background = core::parse_enum<render::Background>(options.background);
+  core::parse_enum<render::View>(options.view);
   check_output_folder(options.out);
   render::Scene scene;
   for (std::size_t i = 0; i < options.files.size(); ++i)

@@ -41,7 +41,7 @@ void write_ground_truth(const fs::path& file, const core::SurfaceSamples& sample
 }
 
 void run_synth(const SynthOptions& options) {
-  const core::SyntheticCategory category = core::parse_synthetic_category(options.category);
+  const core::SyntheticCategory category = core::parse_enum<core::SyntheticCategory>(options.category);
   if (options.instances < 2) throw UsageError("--instances must be at least 2");
   const fs::path out(options.out_path);
   prepare_output(out);
@@ -62,7 +62,7 @@ void run_synth(const SynthOptions& options) {
     fs::remove_all(out);  // nothing half-written is left behind
     throw;
   }
-  const nlohmann::json description = {{"category", core::to_string(category)},
+  const nlohmann::json description = {{"category", core::enum_name(category)},
                                       {"seed", options.seed},
                                       {"parts", core::part_names(category)},
                                       {"shape_parameters", parameters}};

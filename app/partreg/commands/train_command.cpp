@@ -5,7 +5,9 @@
 
 #include "partreg/commands/commands.hpp"
 #include "partreg/commands/common.hpp"
+#include "partreg/commands/registration_flags.hpp"
 #include "partreg/core/errors.hpp"
+#include "partreg/core/parallel.hpp"
 #include "partreg/core/training.hpp"
 #include "partreg/io/dataset.hpp"
 #include "partreg/io/model_file.hpp"
@@ -14,6 +16,7 @@ namespace partreg::app {
 namespace {
 
 struct TrainOptions {
+  int threads = 0;  // the command's thread budget
   std::string dataset_path;
   std::string out_path;
   std::string canonical;
@@ -52,6 +55,7 @@ void print_summary(const core::CategoryModel& model, const core::TrainingReport&
 }
 
 void run_train(TrainOptions& options) {
+  const core::ThreadBudget budget(options.threads);
   if (options.settings.latent_dimensions < 1) throw UsageError("--latent must be at least 1");
   if (options.settings.canonical_points < 10) throw UsageError("--points must be at least 10");
   if (!options.canonical.empty()) options.settings.canonical = options.canonical;
@@ -83,6 +87,7 @@ void add_train_command(CLI::App& app) {
   auto options = std::make_shared<TrainOptions>();
   CLI::App* command =
       app.add_subcommand("train", "Learn a category model (shape spaces) from a dataset folder");
+  add_threads_flag(command, options->threads);
   command
       ->add_option("DATASET", options->dataset_path,
                    "folder: one file per instance, or one folder of part meshes per instance")

@@ -7,7 +7,9 @@
 
 #include "partreg/commands/commands.hpp"
 #include "partreg/commands/common.hpp"
+#include "partreg/commands/registration_flags.hpp"
 #include "partreg/core/errors.hpp"
+#include "partreg/core/parallel.hpp"
 #include "partreg/eval/views.hpp"
 #include "partreg/io/cloud_io.hpp"
 #include "partreg/io/geometry_io.hpp"
@@ -17,6 +19,7 @@ namespace partreg::app {
 namespace {
 
 struct ViewsOptions {
+  int threads = 0;  // the command's thread budget
   std::string input_path;
   std::string out_path;
   int count = 42;
@@ -36,6 +39,7 @@ eval::ViewCaster make_caster(const std::string& path) {
 }
 
 void run_views(ViewsOptions& options) {
+  const core::ThreadBudget budget(options.threads);
   parse_resolution(options.resolution, options.camera);
   const std::vector<Eigen::Vector3d> directions = eval::sphere_directions(options.count);
   const eval::ViewCaster caster = make_caster(options.input_path);
@@ -67,6 +71,7 @@ void add_views_command(CLI::App& app) {
   auto options = std::make_shared<ViewsOptions>();
   CLI::App* command = app.add_subcommand(
       "views", "Partial views of a mesh or cloud as a depth camera sees them from a tessellated sphere");
+  add_threads_flag(command, options->threads);
   command->add_option("INPUT", options->input_path, "mesh (rays hit its surface) or cloud")->required();
   command->add_option("--out", options->out_path, "new folder: view_NNN.ply and views.json")->required();
   command->add_option("--count", options->count, "viewpoints: 12, 42, 162, ... (tessellated sphere)")

@@ -2,12 +2,13 @@
 
 #include <Eigen/Eigenvalues>
 #include <chrono>
-#include <future>
 #include <numeric>
 
 #include "partreg/core/errors.hpp"
 #include "partreg/core/kdtree.hpp"
 #include "partreg/core/normalization.hpp"
+#include "partreg/core/parallel.hpp"
+#include "partreg/core/registration_options.hpp"
 #include "partreg/core/sampling.hpp"
 #include "space_solver.hpp"
 
@@ -33,10 +34,11 @@ detail::Observation prepare_observation(const CategoryModel& model, const Points
   const Points normalised = (observed.rowwise() - centroid.transpose()) / model.normalization.scale;
   // Farthest-point sampling costs points x kept; when every point is kept it would only reorder them.
   observation.points =
-      normalised.rows() <= settings.observed_points
+      normalised.rows() <= settings.sampling.observed_points
           ? normalised
-          : select_rows(normalised, farthest_point_indices(
-                                        normalised, static_cast<std::size_t>(settings.observed_points)));
+          : select_rows(normalised,
+                        farthest_point_indices(normalised,
+                                               static_cast<std::size_t>(settings.sampling.observed_points)));
   observation.tree = std::make_unique<KdTree>(observation.points);
   if (settings.viewpoint)
     observation.viewpoint = (*settings.viewpoint - centroid) / model.normalization.scale;
@@ -79,7 +81,7 @@ Eigen::Matrix3d principal_axes(const Points& points) {
 // map the canonical's axes onto the observation's (the axes' signs are unknown).
 std::vector<Eigen::Matrix3d> base_rotations(const CategoryModel& model, const Observation& observation,
                                             const RegistrationSettings& settings) {
-  if (!settings.align_principal_axes) return {Eigen::Matrix3d::Identity()};
+  if (!settings.initialisation.align_principal_axes) return {Eigen::Matrix3d::Identity()};
   const Eigen::Matrix3d canonical = principal_axes(model.canonical),
                         observed = principal_axes(observation.points);
   std::vector<Eigen::Matrix3d> rotations;
@@ -96,12 +98,12 @@ std::vector<Pose> initial_poses(const CategoryModel& model, const Observation& o
   const Eigen::Vector3d canonical_centre =
       holistic.deformed(Eigen::VectorXd::Zero(holistic.dimensions())).colwise().mean().transpose();
   std::vector<Pose> poses;
-  const int restarts = std::max(1, settings.restarts);
+  const int restarts = std::max(1, settings.initialisation.restarts);
   for (const Eigen::Matrix3d& base : base_rotations(model, observation, settings)) {
     for (int k = 0; k < restarts; ++k) {
       Pose pose;
-      pose.rotation =
-          Eigen::Quaterniond(base * Eigen::AngleAxisd(2.0 * M_PI * k / restarts, settings.up.normalized()));
+      pose.rotation = Eigen::Quaterniond(
+          base * Eigen::AngleAxisd(2.0 * M_PI * k / restarts, settings.initialisation.up.normalized()));
       pose.translation = -(pose.rotation * canonical_centre);
       poses.push_back(pose);
     }
@@ -132,12 +134,16 @@ Eigen::Matrix4d to_data_frame(const Pose& pose, const CategoryModel& model, cons
 
 void record(RegistrationResult& result, const std::string& name, const SpaceSolution& solution,
             const CategoryModel& model, const Eigen::Vector3d& centroid) {
+  const StopReason stop = !solution.had_pairs  ? StopReason::no_pairs
+                          : solution.converged ? StopReason::converged
+                                               : StopReason::max_iterations;
   SpaceFit fit{name,
                solution.latent,
                to_data_frame(solution.pose, model, centroid),
                solution.pose.scale,
                solution.cost,
                solution.iterations,
+               stop,
                solution.seconds};
   result.fits.push_back(fit);
   for (std::size_t i = 0; i < solution.steps.size(); ++i)
@@ -187,69 +193,10 @@ FitStatistics fit_statistics(const Points& deformed, const Points& observed, dou
 
 }  // namespace
 
-Variant parse_variant(const std::string& name) {
-  if (name == "holistic") return Variant::holistic;
-  if (name == "partwise") return Variant::partwise;
-  if (name == "hol+part") return Variant::hol_part;
-  throw UsageError("unknown variant '" + name + "' (known: holistic, partwise, hol+part)");
-}
-
-std::string to_string(Variant variant) {
-  switch (variant) {
-    case Variant::holistic:
-      return "holistic";
-    case Variant::partwise:
-      return "partwise";
-    case Variant::hol_part:
-      return "hol+part";
-  }
-  return "unknown";
-}
-
-Direction parse_direction(const std::string& name) {
-  if (name == "canonical") return Direction::canonical_to_observed;
-  if (name == "observed") return Direction::observed_to_canonical;
-  if (name == "symmetric") return Direction::symmetric;
-  throw UsageError("unknown direction '" + name + "' (known: canonical, observed, symmetric)");
-}
-
-Loss parse_loss(const std::string& name) {
-  if (name == "squared") return Loss::squared;
-  if (name == "huber") return Loss::huber;
-  if (name == "cauchy") return Loss::cauchy;
-  if (name == "trimmed") return Loss::trimmed;
-  throw UsageError("unknown loss '" + name + "' (known: squared, huber, cauchy, trimmed)");
-}
-
-std::string to_string(Direction direction) {
-  switch (direction) {
-    case Direction::canonical_to_observed:
-      return "canonical";
-    case Direction::observed_to_canonical:
-      return "observed";
-    case Direction::symmetric:
-      return "symmetric";
-  }
-  return "unknown";
-}
-
-std::string to_string(Loss loss) {
-  switch (loss) {
-    case Loss::squared:
-      return "squared";
-    case Loss::huber:
-      return "huber";
-    case Loss::cauchy:
-      return "cauchy";
-    case Loss::trimmed:
-      return "trimmed";
-  }
-  return "unknown";
-}
-
 RegistrationResult register_observation(const CategoryModel& model, const Points& observed,
                                         const RegistrationSettings& settings) {
   const auto start = std::chrono::steady_clock::now();
+  validate(settings);
   if (settings.variant != Variant::holistic && !model.has_parts())
     throw UsageError("model '" + model.category + "' has no parts: use the holistic variant");
   Eigen::Vector3d centroid;
@@ -269,7 +216,6 @@ RegistrationResult register_observation(const CategoryModel& model, const Points
     deformed_normalised = whole.pose.apply(holistic.deformed(whole.latent));
   }
   if (settings.variant != Variant::holistic) {
-    // Parts are independent given their initialisation: solve them in parallel.
     const Points holistic_displacement = settings.variant == Variant::hol_part
                                              ? Points(holistic.deformed(whole.latent) - holistic.canonical)
                                              : Points();
@@ -280,25 +226,33 @@ RegistrationResult register_observation(const CategoryModel& model, const Points
     if (settings.variant == Variant::hol_part)
       part_observations = split_observation(model, observation, deformed_normalised);
     else
-      part_settings.direction = Direction::canonical_to_observed;
-    std::vector<std::future<SpaceSolution>> parts;
+      part_settings.objective.direction = Direction::canonical_to_observed;
+    // Parts are independent given their initialisation: solve them in parallel, within the thread budget.
+    std::vector<SpaceSolution> parts(model.spaces.size() - 1);
+    parallel_for(
+        static_cast<Eigen::Index>(parts.size()),
+        [&](Eigen::Index begin, Eigen::Index end) {
+          for (Eigen::Index i = begin; i < end; ++i) {
+            const std::size_t p = static_cast<std::size_t>(i) + 1;
+            const ShapeSpace& space = model.spaces[p];
+            const Points part_normals = normals.rows() ? rows_of(normals, space.point_indices) : Points();
+            if (settings.variant == Variant::partwise) {
+              parts[p - 1] = best_of(space, part_normals, observation, poses,
+                                     Eigen::VectorXd::Zero(space.dimensions()), part_settings);
+              continue;
+            }
+            const Observation& own = part_observations[p].tree ? part_observations[p] : observation;
+            RegistrationSettings own_settings = settings;
+            if (!part_observations[p].tree)
+              own_settings.objective.direction = Direction::canonical_to_observed;
+            const Eigen::VectorXd latent =
+                space.project_displacement(rows_of(holistic_displacement, space.point_indices));
+            parts[p - 1] = detail::solve_space(space, part_normals, own, latent, whole.pose, own_settings);
+          }
+        },
+        0, 1);
     for (std::size_t p = 1; p < model.spaces.size(); ++p) {
-      parts.push_back(std::async(std::launch::async, [&, p] {
-        const ShapeSpace& space = model.spaces[p];
-        const Points part_normals = normals.rows() ? rows_of(normals, space.point_indices) : Points();
-        if (settings.variant == Variant::partwise)
-          return best_of(space, part_normals, observation, poses, Eigen::VectorXd::Zero(space.dimensions()),
-                         part_settings);
-        const Observation& own = part_observations[p].tree ? part_observations[p] : observation;
-        RegistrationSettings own_settings = settings;
-        if (!part_observations[p].tree) own_settings.direction = Direction::canonical_to_observed;
-        const Eigen::VectorXd latent =
-            space.project_displacement(rows_of(holistic_displacement, space.point_indices));
-        return detail::solve_space(space, part_normals, own, latent, whole.pose, own_settings);
-      }));
-    }
-    for (std::size_t p = 1; p < model.spaces.size(); ++p) {
-      const SpaceSolution solution = parts[p - 1].get();
+      const SpaceSolution& solution = parts[p - 1];
       const ShapeSpace& space = model.spaces[p];
       record(result, space.name, solution, model, centroid);
       const Points posed = solution.pose.apply(space.deformed(solution.latent));

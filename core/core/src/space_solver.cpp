@@ -52,13 +52,13 @@ Correspondences correspond(const Points& posed, const std::vector<bool>& visible
   for (std::size_t m = 0; m < visible.size(); ++m)
     if (visible[m]) active.push_back(static_cast<int>(m));
   if (active.empty()) return result;
-  if (settings.direction != Direction::observed_to_canonical) {
+  if (settings.objective.direction != Direction::observed_to_canonical) {
     for (int m : active) {
       const auto [n, squared] = observation.tree->nearest(posed.row(m).transpose());
       result.from_canonical.push_back({m, observation.points.row(n).transpose(), squared});
     }
   }
-  if (settings.direction != Direction::canonical_to_observed) {
+  if (settings.objective.direction != Direction::canonical_to_observed) {
     Points active_points(static_cast<Eigen::Index>(active.size()), 3);
     for (std::size_t i = 0; i < active.size(); ++i)
       active_points.row(static_cast<Eigen::Index>(i)) = posed.row(active[i]);
@@ -69,9 +69,9 @@ Correspondences correspond(const Points& posed, const std::vector<bool>& visible
           {active[static_cast<std::size_t>(i)], observation.points.row(n).transpose(), squared});
     }
   }
-  if (settings.loss == Loss::trimmed) {
-    trim(result.from_canonical, settings.trim_fraction);
-    trim(result.from_observed, settings.trim_fraction);
+  if (settings.objective.loss == Loss::trimmed) {
+    trim(result.from_canonical, settings.objective.trim_fraction);
+    trim(result.from_observed, settings.objective.trim_fraction);
   }
   return result;
 }
@@ -83,10 +83,10 @@ std::vector<WeightedPair> weighted_pairs(const Correspondences& pairs, const Reg
   for (const std::vector<Pair>* set : {&pairs.from_canonical, &pairs.from_observed}) {
     const double share = set->empty() ? 0.0 : 1.0 / static_cast<double>(set->size());
     for (const Pair& pair : *set) {
-      const double distance = std::sqrt(pair.squared_distance), c = settings.loss_scale;
+      const double distance = std::sqrt(pair.squared_distance), c = settings.objective.loss_scale;
       double robust = 1.0;
-      if (settings.loss == Loss::huber && distance > c) robust = c / distance;
-      if (settings.loss == Loss::cauchy) robust = 1.0 / (1.0 + pair.squared_distance / (c * c));
+      if (settings.objective.loss == Loss::huber && distance > c) robust = c / distance;
+      if (settings.objective.loss == Loss::cauchy) robust = 1.0 / (1.0 + pair.squared_distance / (c * c));
       all.push_back({pair.row, pair.target, share * robust});
     }
   }
@@ -108,31 +108,35 @@ SpaceSolution solve_space(const ShapeSpace& space, const Points& normals, const 
   solution.latent = initial_latent;
   solution.pose = initial_pose;
   double previous = std::numeric_limits<double>::infinity();
-  for (int outer = 0; outer < settings.outer_iterations; ++outer) {
+  for (int outer = 0; outer < settings.convergence.outer_iterations; ++outer) {
     const Eigen::VectorXd before_latent = solution.latent;
     const Eigen::Vector3d before_translation = solution.pose.translation;
     const Eigen::Quaterniond before_rotation = solution.pose.rotation;
     const Points posed = solution.pose.apply(deformed_points(space, solution.latent));
     const Correspondences pairs = correspond(
         posed, visible_rows(posed, normals, solution.pose, observation.viewpoint), observation, settings);
-    if (pairs.from_canonical.empty() && pairs.from_observed.empty()) break;
+    if (pairs.from_canonical.empty() && pairs.from_observed.empty()) {
+      solution.had_pairs = false;
+      break;
+    }
 
     ceres::Problem problem;
     double* rotation = solution.pose.rotation.coeffs().data();
     double* translation = solution.pose.translation.data();
     double* scale = &solution.pose.scale;
     double* latent = solution.latent.data();
-    problem.AddResidualBlock(new MomentCost(space, weighted_pairs(pairs, settings), settings.prior_weight),
-                             nullptr, rotation, translation, scale, latent);
+    problem.AddResidualBlock(
+        new MomentCost(space, weighted_pairs(pairs, settings), settings.objective.prior_weight), nullptr,
+        rotation, translation, scale, latent);
     problem.SetManifold(rotation, new ceres::EigenQuaternionManifold);
-    if (!settings.estimate_scale)
+    if (!settings.objective.estimate_scale)
       problem.SetParameterBlockConstant(scale);
     else
       problem.SetParameterLowerBound(scale, 0, 0.2);
 
     ceres::Solver::Options options;
     options.linear_solver_type = ceres::DENSE_NORMAL_CHOLESKY;  // 13 unknowns, 9 (q + 1) + 4 + q residuals
-    options.max_num_iterations = settings.inner_iterations;
+    options.max_num_iterations = settings.convergence.inner_iterations;
     options.num_threads = 1;  // parts run in parallel above this level
     options.logging_type = ceres::SILENT;
     ceres::Solver::Summary summary;
@@ -148,9 +152,12 @@ SpaceSolution solve_space(const ShapeSpace& space, const Points& normals, const 
     const double moved = (solution.latent - before_latent).norm() +
                          (solution.pose.translation - before_translation).norm() +
                          solution.pose.rotation.angularDistance(before_rotation);
-    if (std::abs(previous - summary.final_cost) <= settings.tolerance * std::max(summary.final_cost, 1e-12) ||
-        moved < settings.tolerance)
+    if (std::abs(previous - summary.final_cost) <=
+            settings.convergence.tolerance * std::max(summary.final_cost, 1e-12) ||
+        moved < settings.convergence.tolerance) {
+      solution.converged = true;
       break;
+    }
     previous = summary.final_cost;
   }
   solution.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();

@@ -3,10 +3,12 @@
 
 #include <Eigen/Geometry>
 #include <memory>
+#include <optional>
 #include <vector>
 
 #include "partreg/core/kdtree.hpp"
-#include "partreg/core/registration.hpp"
+#include "partreg/core/registration_settings.hpp"
+#include "partreg/core/shape_space.hpp"
 
 namespace partreg::core::detail {
 
@@ -30,6 +32,8 @@ struct SpaceSolution {
   Pose pose;
   double cost = 0.0;
   int iterations = 0;
+  bool converged = false;  ///< false: stopped at the iteration limit or for lack of correspondences
+  bool had_pairs = true;   ///< false: a refresh found no correspondence
   double seconds = 0.0;
   std::vector<std::pair<Eigen::VectorXd, Pose>> steps;  ///< latent and pose after every outer step
   std::vector<double> step_costs, step_seconds;

@@ -121,25 +121,6 @@ std::vector<Range> parameter_ranges(SyntheticCategory category) {
 
 }  // namespace
 
-SyntheticCategory parse_synthetic_category(const std::string& name) {
-  if (name == "mug") return SyntheticCategory::mug;
-  if (name == "drill") return SyntheticCategory::drill;
-  if (name == "spray_bottle") return SyntheticCategory::spray_bottle;
-  throw UsageError("unknown synthetic category '" + name + "' (known: mug, drill, spray_bottle)");
-}
-
-std::string to_string(SyntheticCategory category) {
-  switch (category) {
-    case SyntheticCategory::mug:
-      return "mug";
-    case SyntheticCategory::drill:
-      return "drill";
-    case SyntheticCategory::spray_bottle:
-      return "spray_bottle";
-  }
-  return "unknown";
-}
-
 std::vector<std::string> part_names(SyntheticCategory category) {
   switch (category) {
     case SyntheticCategory::mug:
@@ -171,7 +152,7 @@ SyntheticInstance make_synthetic_instance(SyntheticCategory category, std::uint6
   std::mt19937_64 generator(sequence);
   SyntheticInstance instance;
   char name[64];
-  std::snprintf(name, sizeof name, "%s_%03d", to_string(category).c_str(), index);
+  std::snprintf(name, sizeof name, "%s_%03d", enum_name(category).c_str(), index);
   instance.name = name;
   for (const Range& range : parameter_ranges(category))
     instance.shape_parameters.push_back(

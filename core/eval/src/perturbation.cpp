@@ -7,29 +7,6 @@
 
 namespace partreg::eval {
 
-Perturbation parse_perturbation(const std::string& name) {
-  for (Perturbation kind : {Perturbation::none, Perturbation::noise, Perturbation::outliers,
-                            Perturbation::rotation, Perturbation::translation})
-    if (name == to_string(kind)) return kind;
-  throw UsageError("unknown perturbation '" + name + "' (none, noise, outliers, rotation, translation)");
-}
-
-std::string to_string(Perturbation kind) {
-  switch (kind) {
-    case Perturbation::none:
-      return "none";
-    case Perturbation::noise:
-      return "noise";
-    case Perturbation::outliers:
-      return "outliers";
-    case Perturbation::rotation:
-      return "rotation";
-    case Perturbation::translation:
-      return "translation";
-  }
-  return "none";
-}
-
 const std::vector<Perturbation>& sweep_kinds() {
   static const std::vector<Perturbation> kinds = {Perturbation::noise, Perturbation::outliers,
                                                   Perturbation::rotation, Perturbation::translation};
@@ -62,7 +39,8 @@ namespace {
 
 void check_level(Perturbation kind, double level) {
   if (!std::isfinite(level) || level < 0)
-    throw UsageError(to_string(kind) + " level must be a finite number >= 0, not " + std::to_string(level));
+    throw UsageError(core::enum_name(kind) + " level must be a finite number >= 0, not " +
+                     std::to_string(level));
   if (kind == Perturbation::outliers && level > 10)
     throw UsageError("outlier ratio " + std::to_string(level) + " is out of range (0 to 10)");
   if (kind == Perturbation::rotation && level > M_PI)

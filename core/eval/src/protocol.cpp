@@ -13,6 +13,7 @@
 #include "partreg/core/errors.hpp"
 #include "partreg/core/kdtree.hpp"
 #include "partreg/core/normalization.hpp"
+#include "partreg/core/parallel.hpp"
 #include "partreg/core/sampling.hpp"
 
 namespace partreg::eval {
@@ -78,7 +79,7 @@ std::vector<core::Variant> usable_variants(const EvalInput& input, const EvalSet
     const bool needs_parts = variant != core::Variant::holistic;
     if (needs_parts && input.part_names.empty()) {
       if (progress)
-        progress(0, 0, input.category + " has no parts: " + core::to_string(variant) + " is not run");
+        progress(0, 0, input.category + " has no parts: " + core::enum_name(variant) + " is not run");
       continue;
     }
     if (std::find(variants.begin(), variants.end(), variant) == variants.end()) variants.push_back(variant);
@@ -155,7 +156,7 @@ void run_job(const EvalInput& input, const EvalSettings& settings, const core::C
     row = {input.category,
            instance.name,
            model.training.canonical,
-           core::to_string(variants[v]),
+           core::enum_name(variants[v]),
            test.fold,
            observation.view,
            observation.direction,
@@ -165,8 +166,8 @@ void run_job(const EvalInput& input, const EvalSettings& settings, const core::C
            level,
            test.diagonal,
            static_cast<int>(perturbed.points.rows()),
-           measure_errors(result.deformed, result.part, model.part_names, truth, test.diagonal,
-                          truth_of_row ? &*truth_of_row : nullptr),
+           core::measure_against_truth(result.deformed, result.part, model.part_names, truth, test.diagonal,
+                                       truth_of_row ? &*truth_of_row : nullptr),
            result.seconds};
   }
 }
@@ -283,6 +284,7 @@ std::vector<EvalRow> run_evaluation(const EvalInput& input, const EvalSettings& 
       rows.resize(first + jobs.size() * variants.size());
       arena.execute([&] {
         tbb::parallel_for(std::size_t{0}, jobs.size(), [&](std::size_t j) {
+          const core::ThreadBudget one(1);  // the arena holds the budget: registrations inside stay serial
           run_job(input, settings, model, test, correspondents, jobs[j], variants,
                   &rows[first + j * variants.size()]);
           const std::size_t now = done += variants.size();

@@ -10,14 +10,20 @@
 #include <sstream>
 
 #include "partreg/core/errors.hpp"
+#include "partreg/core/registration_settings.hpp"
 
 namespace partreg::eval {
 namespace {
 
+// The first line names the layout's version (raised when a column changes meaning); the second the columns.
+const char* const kFormatLine = "# partreg evaluation rows, format 2";
 const char* const kHeader =
     "category,instance,canonical,fold,variant,view,direction_x,direction_y,direction_z,perturbation,"
-    "level_index,paper_level,level,diagonal,observed_points,eq5,eq5_normalised,chamfer,chamfer_normalised,"
-    "correspondence_normalised,part_eq5_normalised,seconds";
+    "level_index,paper_level,level,diagonal,observed_points,eq5,eq5_per_diagonal2,reverse_eq5,"
+    "symmetric_rms_per_diagonal,chamfer,chamfer_per_diagonal,correspondence_per_diagonal,part_eq5_per_"
+    "diagonal2,"
+    "seconds";
+constexpr std::size_t kColumns = 24;
 
 // Part errors in one CSV field: "body=1.2e-05;handle=3.4e-05".
 std::string parts_field(const std::map<std::string, double>& parts) {
@@ -51,14 +57,16 @@ EvalRow parse_row(const std::vector<std::string>& f) {
   row.category = f[0], row.instance = f[1], row.canonical = f[2], row.fold = std::stoi(f[3]);
   row.variant = f[4], row.view = std::stoi(f[5]);
   row.direction = {std::stod(f[6]), std::stod(f[7]), std::stod(f[8])};
-  row.perturbation = parse_perturbation(f[9]);
+  row.perturbation = core::parse_enum<Perturbation>(f[9]);
   row.level_index = std::stoi(f[10]), row.paper_level = std::stod(f[11]), row.level = std::stod(f[12]);
   row.diagonal = std::stod(f[13]), row.observed_points = std::stoi(f[14]);
-  row.errors.eq5 = std::stod(f[15]), row.errors.eq5_normalised = std::stod(f[16]);
-  row.errors.chamfer = std::stod(f[17]), row.errors.chamfer_normalised = std::stod(f[18]);
-  if (!f[19].empty()) row.errors.correspondence_normalised = std::stod(f[19]);
-  row.errors.part_eq5_normalised = parse_parts(f[20]);
-  row.seconds = std::stod(f[21]);
+  row.errors.diagonal = row.diagonal;
+  row.errors.eq5 = std::stod(f[15]), row.errors.eq5_per_diagonal2 = std::stod(f[16]);
+  row.errors.reverse_eq5 = std::stod(f[17]), row.errors.symmetric_rms_per_diagonal = std::stod(f[18]);
+  row.errors.chamfer = std::stod(f[19]), row.errors.chamfer_per_diagonal = std::stod(f[20]);
+  if (!f[21].empty()) row.errors.correspondence_per_diagonal = std::stod(f[21]);
+  row.errors.part_eq5_per_diagonal2 = parse_parts(f[22]);
+  row.seconds = std::stod(f[23]);
   return row;
 }
 
@@ -123,7 +131,7 @@ std::vector<std::string> categories_of(const std::vector<EvalRow>& rows) {
 
 std::vector<std::string> variants_of(const std::vector<EvalRow>& rows) {
   std::vector<std::string> variants;
-  for (const char* variant : {"holistic", "partwise", "hol+part"})
+  for (const std::string& variant : core::enum_names<core::Variant>())
     if (std::any_of(rows.begin(), rows.end(), [&](const EvalRow& r) { return r.variant == variant; }))
       variants.push_back(variant);
   return variants;
@@ -132,15 +140,17 @@ std::vector<std::string> variants_of(const std::vector<EvalRow>& rows) {
 void write_rows_csv(const std::filesystem::path& path, const std::vector<EvalRow>& rows) {
   std::ofstream out(path);
   if (!out) throw InputError("cannot write " + path.string());
-  out << kHeader << '\n' << std::setprecision(9);
+  out << kFormatLine << '\n' << kHeader << '\n' << std::setprecision(9);
   for (const EvalRow& r : rows) {
     out << r.category << ',' << r.instance << ',' << r.canonical << ',' << r.fold << ',' << r.variant << ','
         << r.view << ',' << r.direction.x() << ',' << r.direction.y() << ',' << r.direction.z() << ','
-        << to_string(r.perturbation) << ',' << r.level_index << ',' << r.paper_level << ',' << r.level << ','
-        << r.diagonal << ',' << r.observed_points << ',' << r.errors.eq5 << ',' << r.errors.eq5_normalised
-        << ',' << r.errors.chamfer << ',' << r.errors.chamfer_normalised << ',';
-    if (r.errors.correspondence_normalised) out << *r.errors.correspondence_normalised;
-    out << ',' << parts_field(r.errors.part_eq5_normalised) << ',' << r.seconds << '\n';
+        << core::enum_name(r.perturbation) << ',' << r.level_index << ',' << r.paper_level << ',' << r.level
+        << ',' << r.diagonal << ',' << r.observed_points << ',' << r.errors.eq5 << ','
+        << r.errors.eq5_per_diagonal2 << ',' << r.errors.reverse_eq5 << ','
+        << r.errors.symmetric_rms_per_diagonal << ',' << r.errors.chamfer << ','
+        << r.errors.chamfer_per_diagonal << ',';
+    if (r.errors.correspondence_per_diagonal) out << *r.errors.correspondence_per_diagonal;
+    out << ',' << parts_field(r.errors.part_eq5_per_diagonal2) << ',' << r.seconds << '\n';
   }
   if (!out.flush()) throw InputError("cannot write " + path.string());
 }
@@ -149,14 +159,20 @@ std::vector<EvalRow> read_rows_csv(const std::filesystem::path& path) {
   std::ifstream in(path);
   if (!in) throw InputError("cannot read " + path.string());
   std::string line;
+  if (!std::getline(in, line) || line.rfind("# partreg evaluation rows", 0) != 0)
+    throw InputError(path.string() + " is not a partreg evaluation CSV (its first line names no format)");
+  if (line != kFormatLine)
+    throw InputError(path.string() + " has another format (" + line.substr(2) + "; this partreg reads " +
+                     std::string(kFormatLine).substr(2) + "): run the evaluation again");
   if (!std::getline(in, line) || line != kHeader)
     throw InputError(path.string() + " is not a partreg evaluation CSV (header differs)");
   std::vector<EvalRow> rows;
-  for (int number = 2; std::getline(in, line); ++number) {
+  for (int number = 3; std::getline(in, line); ++number) {
     if (line.empty()) continue;
     const std::vector<std::string> fields = split(line);
     try {
-      if (fields.size() != 22) throw std::invalid_argument("expected 22 fields");
+      if (fields.size() != kColumns)
+        throw std::invalid_argument("expected " + std::to_string(kColumns) + " fields");
       rows.push_back(parse_row(fields));
     } catch (const std::exception& e) {
       throw InputError(path.string() + ":" + std::to_string(number) + ": malformed row (" + e.what() + ")");
@@ -165,19 +181,19 @@ std::vector<EvalRow> read_rows_csv(const std::filesystem::path& path) {
   return rows;
 }
 
-double mean_eq5_normalised(const std::vector<EvalRow>& rows, const std::string& category,
-                           const std::string& variant, bool partial, Perturbation kind, int level_index) {
+double mean_eq5_per_diagonal2(const std::vector<EvalRow>& rows, const std::string& category,
+                              const std::string& variant, bool partial, Perturbation kind, int level_index) {
   return mean_of(
       rows,
       [&](const EvalRow& r) {
         return r.category == category && r.variant == variant && is_partial(r) == partial &&
                r.perturbation == kind && r.level_index == level_index;
       },
-      [](const EvalRow& r) { return r.errors.eq5_normalised; });
+      [](const EvalRow& r) { return r.errors.eq5_per_diagonal2; });
 }
 
-double swept_clean_eq5_normalised(const std::vector<EvalRow>& rows, const std::string& category,
-                                  const std::string& variant, bool partial) {
+double swept_clean_eq5_per_diagonal2(const std::vector<EvalRow>& rows, const std::string& category,
+                                     const std::string& variant, bool partial) {
   std::set<std::pair<std::string, int>> swept;  // (instance, view) pairs that were perturbed
   for (const EvalRow& r : rows)
     if (r.category == category && r.perturbation != Perturbation::none && is_partial(r) == partial)
@@ -188,7 +204,7 @@ double swept_clean_eq5_normalised(const std::vector<EvalRow>& rows, const std::s
         return r.category == category && r.variant == variant && r.perturbation == Perturbation::none &&
                swept.count({r.instance, r.view}) > 0;
       },
-      [](const EvalRow& r) { return r.errors.eq5_normalised; });
+      [](const EvalRow& r) { return r.errors.eq5_per_diagonal2; });
 }
 
 namespace {
@@ -207,7 +223,7 @@ void part_tables(std::ostringstream& out, const std::vector<EvalRow>& rows) {
     std::vector<std::string> parts;
     for (const EvalRow& r : rows)
       if (r.category == category)
-        for (const auto& entry : r.errors.part_eq5_normalised)
+        for (const auto& entry : r.errors.part_eq5_per_diagonal2)
           if (std::find(parts.begin(), parts.end(), entry.first) == parts.end()) parts.push_back(entry.first);
     if (parts.size() < 2) continue;
     for (bool partial : {false, true}) {
@@ -224,8 +240,8 @@ void part_tables(std::ostringstream& out, const std::vector<EvalRow>& rows) {
                        r.perturbation == Perturbation::none;
               },
               [&](const EvalRow& r) {
-                const auto found = r.errors.part_eq5_normalised.find(part);
-                return found == r.errors.part_eq5_normalised.end() ? std::nan("") : found->second;
+                const auto found = r.errors.part_eq5_per_diagonal2.find(part);
+                return found == r.errors.part_eq5_per_diagonal2.end() ? std::nan("") : found->second;
               });
           out << ' ' << cell(mean) << " |";
         }
@@ -248,19 +264,20 @@ void sweep_tables(std::ostringstream& out, const std::vector<EvalRow>& rows) {
       header_row(out, "perturbation", variants);
       out << "| clean (same observations) |";
       for (const std::string& variant : variants)
-        out << ' ' << cell(swept_clean_eq5_normalised(rows, category, variant, partial)) << " |";
+        out << ' ' << cell(swept_clean_eq5_per_diagonal2(rows, category, variant, partial)) << " |";
       out << "\n";
       for (Perturbation kind : sweep_kinds())
         for (int level = 0; level < 5; ++level) {
           std::ostringstream cells;
           bool any = false;
           for (const std::string& variant : variants) {
-            const double mean = mean_eq5_normalised(rows, category, variant, partial, kind, level);
+            const double mean = mean_eq5_per_diagonal2(rows, category, variant, partial, kind, level);
             any = any || std::isfinite(mean);
             cells << ' ' << cell(mean) << " |";
           }
           if (any)
-            out << "| " << to_string(kind) << ' ' << paper_levels(kind)[level] << " |" << cells.str() << "\n";
+            out << "| " << core::enum_name(kind) << ' ' << paper_levels(kind)[level] << " |" << cells.str()
+                << "\n";
         }
     }
 }
@@ -289,8 +306,8 @@ std::string markdown_report(const std::vector<EvalRow>& rows) {
       << ". Eq. 5 is the paper's error (mean squared distance from each "
          "deformed canonical point to the closest point of the true instance), divided by the square of the "
          "instance's bounding-box diagonal; tables show it x 1e4.\n";
-  const auto eq5 = [](const EvalRow& r) { return r.errors.eq5_normalised; };
-  const auto chamfer = [](const EvalRow& r) { return r.errors.chamfer_normalised; };
+  const auto eq5 = [](const EvalRow& r) { return r.errors.eq5_per_diagonal2; };
+  const auto chamfer = [](const EvalRow& r) { return r.errors.chamfer_per_diagonal; };
   category_table(out, rows, "Table 1: mean Eq. 5 x 1e4, fully observed instances", false, eq5, 1e4, 2);
   category_table(out, rows, "Table 2: mean Eq. 5 x 1e4, partial views", true, eq5, 1e4, 2);
   category_table(out, rows, "Symmetric Chamfer distance, % of the diagonal, full views", false, chamfer, 100,
@@ -298,9 +315,9 @@ std::string markdown_report(const std::vector<EvalRow>& rows) {
   category_table(out, rows, "Symmetric Chamfer distance, % of the diagonal, partial views", true, chamfer,
                  100, 2);
   if (std::any_of(rows.begin(), rows.end(),
-                  [](const EvalRow& r) { return r.errors.correspondence_normalised; })) {
+                  [](const EvalRow& r) { return r.errors.correspondence_per_diagonal; })) {
     const auto correspondence = [](const EvalRow& r) {
-      return r.errors.correspondence_normalised ? *r.errors.correspondence_normalised : std::nan("");
+      return r.errors.correspondence_per_diagonal ? *r.errors.correspondence_per_diagonal : std::nan("");
     };
     category_table(out, rows, "Correspondence error, % of the diagonal, full views", false, correspondence,
                    100, 2);

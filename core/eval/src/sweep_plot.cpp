@@ -76,10 +76,10 @@ Series panel_series(const std::vector<EvalRow>& rows, const std::string& categor
   Series series;
   for (const std::string& variant : variants_of(rows)) {
     std::vector<std::pair<double, double>> points;
-    const double clean = swept_clean_eq5_normalised(rows, category, variant, partial);
+    const double clean = swept_clean_eq5_per_diagonal2(rows, category, variant, partial);
     if (std::isfinite(clean)) points.emplace_back(0.0, clean * 1e4);
     for (int level = 0; level < 5; ++level) {
-      const double mean = mean_eq5_normalised(rows, category, variant, partial, kind, level);
+      const double mean = mean_eq5_per_diagonal2(rows, category, variant, partial, kind, level);
       if (std::isfinite(mean)) points.emplace_back(paper_levels(kind)[level], mean * 1e4);
     }
     if (points.size() > 1) series.emplace_back(variant, points);
@@ -98,7 +98,7 @@ void draw_panel(cairo_t* cr, const Box& box, Perturbation kind, const Series& se
   auto to_y = [&](double value) { return plot.y + plot.height - value / top * plot.height; };
 
   cairo_set_source_rgb(cr, 0, 0, 0);
-  text(cr, box.x + box.width / 2, box.y + 18, to_string(kind), 15, 0.5);
+  text(cr, box.x + box.width / 2, box.y + 18, core::enum_name(kind), 15, 0.5);
   cairo_set_line_width(cr, 1.0);
   for (int tick = 0; tick <= 4; ++tick) {  // horizontal grid and y labels
     const double value = top * tick / 4;

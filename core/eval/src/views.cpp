@@ -13,6 +13,7 @@
 #include "partreg/core/errors.hpp"
 #include "partreg/core/kdtree.hpp"
 #include "partreg/core/normalization.hpp"
+#include "partreg/core/parallel.hpp"
 
 namespace partreg::eval {
 namespace {
@@ -92,7 +93,9 @@ struct ViewCaster::Scene {
     const Eigen::Vector3d low = points.colwise().minCoeff(), high = points.colwise().maxCoeff();
     centre = (low + high) / 2;
     radius = (high - low).norm() / 2;
-    device = rtcNewDevice(nullptr);
+    // Embree builds its BVH on threads of its own: give it the caller's budget (core/parallel.hpp).
+    const std::string config = "threads=" + std::to_string(core::thread_budget());
+    device = rtcNewDevice(config.c_str());
     if (!device) throw std::runtime_error("Embree could not create a device");
     scene = rtcNewScene(device);
   }

@@ -3,6 +3,7 @@
 #include <fstream>
 
 #include "partreg/core/errors.hpp"
+#include "partreg/core/registration_options.hpp"
 #include "partreg/io/atomic_file.hpp"
 #include "partreg/io/cloud_io.hpp"
 #include "partreg/io/frames_file.hpp"
@@ -16,7 +17,8 @@ nlohmann::json matrix_json(const Eigen::Matrix4d& matrix) {
   return rows;
 }
 
-nlohmann::json result_json(const core::RegistrationResult& result, const ResultSource& source) {
+nlohmann::json result_json(const core::RegistrationResult& result, const core::RegistrationSettings& settings,
+                           const ResultSource& source) {
   nlohmann::json spaces = nlohmann::json::array();
   for (const core::SpaceFit& fit : result.fits)
     spaces.push_back(
@@ -26,12 +28,15 @@ nlohmann::json result_json(const core::RegistrationResult& result, const ResultS
          {"scale", fit.scale},
          {"cost", fit.cost},
          {"iterations", fit.iterations},
+         {"stop_reason", core::enum_name(fit.stop_reason)},
          {"seconds", fit.seconds}});
-  return {{"model", source.model_path},
+  nlohmann::json request = nlohmann::json::object();
+  for (const auto& [name, value] : core::registration_option_values(settings)) request[name] = value;
+  return {{"format_version", kResultFormatVersion},
+          {"model", source.model_path},
           {"observed", source.observed_path},
-          {"variant", core::to_string(result.variant)},
-          {"direction", source.direction},
-          {"loss", source.loss},
+          {"variant", core::enum_name(result.variant)},
+          {"settings", request},
           {"spaces", spaces},
           {"fit",
            {{"mean", result.fit.mean},
@@ -39,6 +44,20 @@ nlohmann::json result_json(const core::RegistrationResult& result, const ResultS
             {"mean_normalised", result.fit.mean_normalised},
             {"p90_normalised", result.fit.p90_normalised}}},
           {"seconds", result.seconds}};
+}
+
+nlohmann::json truth_errors_json(const core::TruthErrors& errors) {
+  nlohmann::json json = {{"diagonal", errors.diagonal},
+                         {"eq5", errors.eq5},
+                         {"eq5_per_diagonal2", errors.eq5_per_diagonal2},
+                         {"reverse_eq5", errors.reverse_eq5},
+                         {"symmetric_rms_per_diagonal", errors.symmetric_rms_per_diagonal},
+                         {"chamfer", errors.chamfer},
+                         {"chamfer_per_diagonal", errors.chamfer_per_diagonal},
+                         {"part_eq5_per_diagonal2", errors.part_eq5_per_diagonal2}};
+  if (errors.correspondence_per_diagonal)
+    json["correspondence_per_diagonal"] = *errors.correspondence_per_diagonal;
+  return json;
 }
 
 std::vector<std::filesystem::path> write_result_folder(const std::filesystem::path& folder,

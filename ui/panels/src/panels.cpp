@@ -3,6 +3,7 @@
 #include <imgui.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -211,19 +212,31 @@ void evaluation_tools(PanelState& panel, std::vector<Command>& out) {
     emit(out, "perturb", {kinds[panel.perturbation], number_text(panel.perturbation_level)});
 }
 
+// A combo box over an enum's names (its EnumNames table); `index` is the chosen entry.
+template <typename Enum>
+void enum_combo(const char* label, int& index) {
+  constexpr auto& table = core::EnumNames<Enum>::table;
+  std::array<const char*, table.size()> names{};
+  for (std::size_t i = 0; i < table.size(); ++i) names[i] = table[i].second;
+  ImGui::Combo(label, &index, names.data(), static_cast<int>(names.size()));
+}
+
+template <typename Enum>
+std::string name_at(int index) {
+  return core::EnumNames<Enum>::table.at(static_cast<std::size_t>(index)).second;
+}
+
 // The variant and the objective; Register emits them as the register command's options.
 void registration_options(const AppState& state, PanelState& panel, std::vector<Command>& out) {
-  const char* variants[] = {"holistic", "partwise", "hol+part"};
-  const char* directions[] = {"canonical", "observed", "symmetric"};
-  const char* losses[] = {"squared", "huber", "cauchy", "trimmed"};
   if (panel.variant < 0) panel.variant = static_cast<int>(state.registration.settings.variant);
-  ImGui::Combo("Variant", &panel.variant, variants, 3);
-  ImGui::Combo("Closest points", &panel.direction, directions, 3);
-  ImGui::Combo("Loss", &panel.loss, losses, 4);
+  enum_combo<core::Variant>("Variant", panel.variant);
+  enum_combo<core::Direction>("Closest points", panel.direction);
+  enum_combo<core::Loss>("Loss", panel.loss);
   if (state.registration.viewpoint) ImGui::Checkbox("Use the viewpoint", &panel.use_viewpoint);
   if (!ImGui::Button("Register")) return;
-  Command command = make_command("register", {variants[panel.variant]},
-                                 {{"direction", directions[panel.direction]}, {"loss", losses[panel.loss]}});
+  Command command = make_command(
+      "register", {name_at<core::Variant>(panel.variant)},
+      {{"direction", name_at<core::Direction>(panel.direction)}, {"loss", name_at<core::Loss>(panel.loss)}});
   if (state.registration.viewpoint && !panel.use_viewpoint) command.options.emplace_back("viewpoint", "none");
   out.push_back(std::move(command));
 }
@@ -245,7 +258,7 @@ void registration_panel(const AppState& state, PanelState& panel, std::vector<Co
   const core::RegistrationResult& result = *registration.result;
   const int steps = static_cast<int>(result.history.size());
   ImGui::Separator();
-  ImGui::Text("%s: %d steps, %.2f s", core::to_string(result.variant).c_str(), steps, result.seconds);
+  ImGui::Text("%s: %d steps, %.2f s", core::enum_name(result.variant).c_str(), steps, result.seconds);
   int step = registration.step + 1;
   if (ImGui::SliderInt("Step", &step, 0, steps)) emit(out, "goto_step", {std::to_string(step)});
   if (ImGui::Button("<")) emit(out, "step", {"-1"});
@@ -299,7 +312,7 @@ void draw_panels(const AppState& state, PanelState& panel, std::vector<Command>&
     for (const auto& [mode, title] : tabs) {
       const ImGuiTabItemFlags flags = mode_changed && mode == state.mode ? ImGuiTabItemFlags_SetSelected : 0;
       if (!ImGui::BeginTabItem(title, nullptr, flags)) continue;
-      if (mode != state.mode && !mode_changed) emit(out, "mode", {to_string(mode)});
+      if (mode != state.mode && !mode_changed) emit(out, "mode", {core::enum_name(mode)});
       if (mode == Mode::labelling) labelling_panel(state, panel, out);
       if (mode == Mode::shape_space) shape_panel(state, panel, out);
       if (mode == Mode::registration) registration_panel(state, panel, out);

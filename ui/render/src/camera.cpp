@@ -37,14 +37,6 @@ void Bounds::extend(const Bounds& other) {
   extend(other.max);
 }
 
-View parse_view(const std::string& name) {
-  if (name == "front") return View::front;
-  if (name == "side") return View::side;
-  if (name == "top") return View::top;
-  if (name == "iso") return View::iso;
-  throw UsageError("unknown view '" + name + "' (front | side | top | iso)");
-}
-
 Eigen::Matrix4f Camera::view_matrix() const {
   const Eigen::Vector3d backward = eye - target;
   if (!(backward.norm() > 0.0)) throw UsageError("the camera's eye and target coincide");

@@ -256,19 +256,6 @@ const MeshUpload& update_proxy_upload(MeshUpload& full, const MeshItem& item, co
 
 }  // namespace
 
-Background parse_background(const std::string& name) {
-  if (name == "white") return Background::white;
-  if (name == "transparent") return Background::transparent;
-  throw UsageError("unknown background '" + name + "' (white | transparent)");
-}
-
-Antialiasing parse_antialiasing(const std::string& name) {
-  if (name == "msaa") return Antialiasing::multisample;
-  if (name == "edge") return Antialiasing::edge;
-  if (name == "none") return Antialiasing::none;
-  throw UsageError("unknown antialiasing '" + name + "' (msaa | edge | none)");
-}
-
 Renderer::Renderer(const RenderSettings& settings) : settings_(settings), gpu_(std::make_unique<Gpu>()) {
   gpu_->splat_program = Program(compile_embedded_program("splat.vert", "", "splat.frag"));
   gpu_->mesh_program = Program(compile_embedded_program("mesh.vert", "", "mesh.frag"));

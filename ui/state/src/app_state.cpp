@@ -17,25 +17,6 @@ void extend(const core::Points& points, Eigen::Vector3d& low, Eigen::Vector3d& h
 
 }  // namespace
 
-Mode parse_mode(const std::string& name) {
-  if (name == "labelling") return Mode::labelling;
-  if (name == "shape") return Mode::shape_space;
-  if (name == "registration") return Mode::registration;
-  throw UsageError("unknown mode '" + name + "' (labelling | shape | registration)");
-}
-
-std::string to_string(Mode mode) {
-  switch (mode) {
-    case Mode::labelling:
-      return "labelling";
-    case Mode::shape_space:
-      return "shape";
-    case Mode::registration:
-      return "registration";
-  }
-  return "";
-}
-
 Eigen::VectorXd ShapeDocument::latent(int s) const {
   const core::ShapeSpace& space = model->spaces.at(static_cast<std::size_t>(s));
   return std_devs.at(static_cast<std::size_t>(s)).cwiseProduct(space.variances.cwiseSqrt());

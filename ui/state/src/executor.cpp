@@ -13,6 +13,7 @@
 
 #include "partreg/core/errors.hpp"
 #include "partreg/core/part_selection.hpp"
+#include "partreg/core/registration_options.hpp"
 #include "partreg/io/atomic_file.hpp"
 #include "partreg/io/cloud_io.hpp"
 #include "partreg/io/frames_file.hpp"
@@ -65,6 +66,12 @@ void refit_keeping_orientation(AppState& state) {
 }
 
 Outcome message(const std::string& text) { return Outcome{text, ""}; }
+
+// The loaded model, for the verbs that need one.
+const core::CategoryModel& require_model(const AppState& state) {
+  if (!state.shapes.loaded()) throw UsageError("no model is loaded (load MODEL.prm first)");
+  return *state.shapes.model;
+}
 
 // --- files
 
@@ -170,8 +177,7 @@ Handler selector(Parse parse) {
 // --- shape spaces
 
 int space_index(const AppState& state, const std::string& name) {
-  if (!state.shapes.loaded()) throw UsageError("no model is loaded (load MODEL.prm first)");
-  const auto& spaces = state.shapes.model->spaces;
+  const auto& spaces = require_model(state).spaces;
   for (std::size_t s = 0; s < spaces.size(); ++s)
     if (spaces[s].name == name) return static_cast<int>(s);
   state.shapes.model->space(name);  // throws the list of names
@@ -194,7 +200,7 @@ Outcome set_latent(AppState& state, const Command& command) {
 }
 
 Outcome animate(AppState& state, const Command& command) {
-  if (!state.shapes.loaded()) throw UsageError("no model is loaded (load MODEL.prm first)");
+  require_model(state);
   if (command.arguments[0] == "off") {
     state.shapes.animated_space = state.shapes.animated_dimension = -1;
     return message("animation stopped");
@@ -215,7 +221,7 @@ Outcome animate(AppState& state, const Command& command) {
 
 // A training instance by name, or by its place in the training list (from 1).
 int instance_index(const AppState& state, const std::string& which) {
-  if (!state.shapes.loaded()) throw UsageError("no model is loaded (load MODEL.prm first)");
+  require_model(state);
   const std::vector<std::string>& names = state.shapes.model->training.instances;
   const auto found = std::find(names.begin(), names.end(), which);
   if (found != names.end()) return static_cast<int>(found - names.begin());
@@ -234,7 +240,7 @@ int instance_index(const AppState& state, const std::string& which) {
 }
 
 Outcome show_instance(AppState& state, const Command& command) {
-  if (!state.shapes.loaded()) throw UsageError("no model is loaded (load MODEL.prm first)");
+  require_model(state);
   const std::string& which = command.arguments[0];
   const int index = which == "none" ? -1 : instance_index(state, which);
   state.shapes.shown_instance = index;
@@ -265,7 +271,7 @@ Outcome instance_latent(AppState& state, const Command& command) {
 }
 
 Outcome reset_latents(AppState& state, const Command& command) {
-  if (!state.shapes.loaded()) throw UsageError("no model is loaded (load MODEL.prm first)");
+  require_model(state);
   for (std::size_t s = 0; s < state.shapes.std_devs.size(); ++s)
     if (command.arguments.empty() || static_cast<int>(s) == space_index(state, command.arguments[0]))
       state.shapes.std_devs[s].setZero();
@@ -273,7 +279,7 @@ Outcome reset_latents(AppState& state, const Command& command) {
 }
 
 Outcome sample_latents(AppState& state, const Command& command) {
-  if (!state.shapes.loaded()) throw UsageError("no model is loaded (load MODEL.prm first)");
+  require_model(state);
   std::mt19937_64 generator(static_cast<std::uint64_t>(integer(command.arguments[0], "SEED")));
   std::normal_distribution<double> normal(0.0, 1.0);
   for (double& value : state.shapes.std_devs[static_cast<std::size_t>(state.shapes.space)])
@@ -293,10 +299,8 @@ Outcome run_registration(AppState& state, const Command& command) {
 Outcome save_result(AppState& state, const Command& command) {
   const RegistrationDocument& registration = state.registration;
   if (!registration.result) throw UsageError("nothing to save: register first");
-  const core::RegistrationSettings& settings = registration.settings;
-  const nlohmann::json report = io::result_json(
-      *registration.result, {state.shapes.model_path, registration.observed_path,
-                             core::to_string(settings.direction), core::to_string(settings.loss)});
+  const nlohmann::json report = io::result_json(*registration.result, registration.settings,
+                                                {state.shapes.model_path, registration.observed_path});
   const auto written = io::write_result_folder(command.arguments.at(0), *state.shapes.model,
                                                *registration.result, report, registration.frames);
   return message("saved " + std::to_string(written.size()) + " files to " + command.arguments.at(0));
@@ -358,67 +362,119 @@ Outcome resize(AppState& state, const Command& command) {
   return {};
 }
 
-const std::map<std::string, Handler>& handlers() {
-  static const std::map<std::string, Handler> table = {
-      {"load", load},
+// The register verb's options: every registration setting but the variant, which is its argument.
+std::vector<std::string> register_options() {
+  std::vector<std::string> names;
+  for (const core::RegistrationOption& option : core::registration_options())
+    if (option.name != "variant") names.push_back(option.name);
+  return names;
+}
+
+std::vector<Verb> make_verbs() {
+  return {
+      {"load", 1, 1, {}, "PATH  (a model .prm, a mesh to label, or a cloud to register)", load},
       {"load_observed",
+       1,
+       1,
+       {"points"},
+       "PATH [points=N]  (a cloud or a mesh sampled to N points)",
        [](AppState& s, const Command& c) {
          return load_observed(s, c.arguments[0], integer(c.option("points", "5000"), "points"));
        }},
       {"load_labels",
+       1,
+       1,
+       {},
+       "PATH  (a labels file for the loaded mesh)",
        [](AppState& s, const Command& c) {
          load_labels(s.labelling, c.arguments[0]);
          s.mode = Mode::labelling;
          return message("loaded the labels " + c.arguments[0]);
        }},
       {"save_labels",
+       1,
+       1,
+       {},
+       "PATH",
        [](AppState& s, const Command& c) {
          save_labels(s.labelling, c.arguments[0]);
          return message("saved " + c.arguments[0]);
        }},
       {"mode",
+       1,
+       1,
+       {},
+       "labelling | shape | registration",
        [](AppState& s, const Command& c) {
-         s.mode = parse_mode(c.arguments[0]);
+         s.mode = core::parse_enum<Mode>(c.arguments[0]);
          fit_view(s);
          return message("");
        }},
       {"create_part",
+       1,
+       1,
+       {},
+       "NAME",
        [](AppState& s, const Command& c) {
          create_part(s.labelling, c.arguments[0]);
          return message("created part " + c.arguments[0]);
        }},
       {"select_part",
+       1,
+       1,
+       {},
+       "NAME",
        [](AppState& s, const Command& c) {
          s.labelling.current_part = find_part(s.labelling, c.arguments[0]);
          return message("painting " + c.arguments[0]);
        }},
       {"rename_part",
+       2,
+       2,
+       {},
+       "NAME NEW_NAME",
        [](AppState& s, const Command& c) {
          rename_part(s.labelling, c.arguments[0], c.arguments[1]);
          return message("renamed " + c.arguments[0] + " to " + c.arguments[1]);
        }},
       {"recolor_part",
+       4,
+       4,
+       {},
+       "NAME R G B  (0-255)",
        [](AppState& s, const Command& c) {
          recolor_part(s.labelling, c.arguments[0], integer(c.arguments[1], "R"), integer(c.arguments[2], "G"),
                       integer(c.arguments[3], "B"));
          return message("");
        }},
       {"merge_part",
+       2,
+       2,
+       {},
+       "FROM INTO",
        [](AppState& s, const Command& c) {
          merge_parts(s.labelling, c.arguments[0], c.arguments[1]);
          return message("merged " + c.arguments[0] + " into " + c.arguments[1]);
        }},
       {"delete_part",
+       1,
+       1,
+       {},
+       "NAME",
        [](AppState& s, const Command& c) {
          delete_part(s.labelling, c.arguments[0]);
          return message("deleted " + c.arguments[0]);
        }},
-      {"paint", paint},
-      {"fill", fill},
-      {"select_box", selector(core::parse_box)},
-      {"select_plane", selector(core::parse_plane)},
-      {"select_sphere", selector(core::parse_sphere)},
+      {"paint", 2, 2, {"radius"}, "X Y [radius=PIXELS]  (pixels from the top-left corner)", paint},
+      {"fill", 2, 2, {}, "X Y", fill},
+      {"select_box", 1, 1, {}, "X0,Y0,Z0,X1,Y1,Z1", selector(core::parse_box)},
+      {"select_plane", 1, 1, {}, "PX,PY,PZ,NX,NY,NZ", selector(core::parse_plane)},
+      {"select_sphere", 1, 1, {}, "CX,CY,CZ,R", selector(core::parse_sphere)},
       {"brush",
+       1,
+       1,
+       {},
+       "RADIUS_PIXELS",
        [](AppState& s, const Command& c) {
          const double radius = number(c.arguments[0], "RADIUS_PIXELS");
          if (radius <= 0.0) throw UsageError("the brush radius must be positive");
@@ -426,63 +482,125 @@ const std::map<std::string, Handler>& handlers() {
          return message("");
        }},
       {"undo",
+       0,
+       0,
+       {},
+       "",
        [](AppState& s, const Command&) { return message(undo(s.labelling) ? "undone" : "nothing to undo"); }},
       {"redo",
+       0,
+       0,
+       {},
+       "",
        [](AppState& s, const Command&) { return message(redo(s.labelling) ? "redone" : "nothing to redo"); }},
       {"space",
+       1,
+       1,
+       {},
+       "holistic | PART",
        [](AppState& s, const Command& c) {
          s.shapes.space = space_index(s, c.arguments[0]);
          s.mode = Mode::shape_space;
          return message("space " + c.arguments[0]);
        }},
-      {"set_latent", set_latent},
-      {"reset_latents", reset_latents},
-      {"sample_latents", sample_latents},
-      {"register", run_registration},
-      {"save_result", save_result},
-      {"animate", animate},
-      {"show_instance", show_instance},
-      {"instance_latent", instance_latent},
+      {"set_latent", 3, 3, {}, "SPACE K VALUE  (K from 1; VALUE in standard deviations)", set_latent},
+      {"reset_latents", 0, 1, {}, "[SPACE]", reset_latents},
+      {"sample_latents",
+       1,
+       1,
+       {},
+       "SEED  (every slider of the current space drawn from N(0, 1))",
+       sample_latents},
+      {"register", 1, 1, register_options(),
+       "VARIANT [NAME=VALUE ...]  (every registration setting, as partreg register's flags)",
+       run_registration},
+      {"save_result",
+       1,
+       1,
+       {},
+       "FOLDER  (result.json, points.ply, mesh.ply, frames.json, as `partreg register` writes)",
+       save_result},
+      {"animate", 1, 2, {}, "SPACE K | off  (slider K sweeps -2..+2 sd, 4 s a cycle)", animate},
+      {"show_instance",
+       1,
+       1,
+       {},
+       "NAME | INDEX | none  (a training instance drawn beside the sliders' shape; INDEX from 1)",
+       show_instance},
+      {"instance_latent",
+       1,
+       1,
+       {"space"},
+       "NAME | INDEX [space=SPACE]  (the sliders set to that training instance's latent)",
+       instance_latent},
       {"load_frames",
+       1,
+       1,
+       {},
+       "PATH  (frames on the canonical, e.g. grasps: drawn at the registration's end)",
        [](AppState& s, const Command& c) {
          s.registration.frames = io::read_frames_file(c.arguments[0]);
          return message("loaded " + std::to_string(s.registration.frames.size()) + " frames from " +
                         c.arguments[0]);
        }},
       {"partial_view",
+       1,
+       1,
+       {"count"},
+       "I [count=42]  (what a depth camera sees of the observation from view I)",
        [](AppState& s, const Command& c) {
          return message(
              take_partial_view(s, integer(c.arguments[0], "I"), integer(c.option("count", "42"), "count")));
        }},
       {"perturb",
+       2,
+       2,
+       {"seed"},
+       "noise|outliers|rotation|translation LEVEL [seed=S]  (the paper's units)",
        [](AppState& s, const Command& c) {
          const int seed = integer(c.option("seed", "1"), "seed");
          return message(perturb_observation(s, c.arguments[0], number(c.arguments[1], "LEVEL"),
                                             static_cast<std::uint64_t>(seed)));
        }},
       {"train",
+       1,
+       1,
+       {"out"},
+       "DATASET [out=MODEL.prm]  (the labelled mesh becomes the canonical)",
        [](AppState& s, const Command& c) {
          const TrainingJob job = prepare_training(s, c);
          return apply_training(s, job, job.run());
        }},
       {"step",
+       1,
+       1,
+       {},
+       "N  (forward N history steps; negative goes back)",
        [](AppState& s, const Command& c) {
          return move_step(s, s.registration.step + integer(c.arguments[0], "N"));
        }},
       {"goto_step",
+       1,
+       1,
+       {},
+       "I | first | last",
        [](AppState& s, const Command& c) {
          const std::string& where = c.arguments[0];
          if (where == "first") return move_step(s, 0);
          if (where == "last") return move_step(s, 1 << 30);
          return move_step(s, integer(where, "I") - 1);
        }},
-      {"camera", camera_command},
-      {"orbit", orbit},
-      {"zoom", zoom},
-      {"pan", pan},
-      {"centre", centre},
-      {"resize", resize},
+      {"camera", 1, 1, {}, "front | side | top | iso", camera_command},
+      {"orbit", 2, 2, {}, "D_AZIMUTH_DEG D_ELEVATION_DEG", orbit},
+      {"zoom", 1, 1, {}, "FACTOR  (>1 moves closer)", zoom},
+      {"pan", 2, 2, {}, "DX DY  (pixels)", pan},
+      {"centre", 2, 2, {}, "X Y  (orbit about the surface point under the pixel)", centre},
+      {"resize", 2, 2, {}, "WIDTH HEIGHT", resize},
       {"panels",
+       1,
+       1,
+       {},
+       "on | off",
        [](AppState& s, const Command& c) {
          if (c.arguments[0] != "on" && c.arguments[0] != "off") throw UsageError("panels on | off");
          s.show_panels = c.arguments[0] == "on";
@@ -490,25 +608,43 @@ const std::map<std::string, Handler>& handlers() {
          return message("");
        }},
       {"screenshot",
+       1,
+       1,
+       {},
+       "PATH.png",
        [](AppState&, const Command& c) {
          if (io::lower_extension(c.arguments[0]) != ".png") throw UsageError("screenshots are .png files");
          return Outcome{"", c.arguments[0]};
        }},
       {"quit",
+       0,
+       0,
+       {},
+       "",
        [](AppState& s, const Command&) {
          s.quit_requested = true;
          return message("");
        }},
   };
-  return table;
 }
 
 }  // namespace
 
+const std::vector<Verb>& verbs() {
+  static const std::vector<Verb> table = make_verbs();
+  return table;
+}
+
+const Verb* find_verb(const std::string& name) {
+  for (const Verb& verb : verbs())
+    if (verb.name == name) return &verb;
+  return nullptr;
+}
+
 Outcome execute(AppState& state, const Command& command) {
-  const auto found = handlers().find(command.verb);
-  if (found == handlers().end()) throw UsageError("unknown command '" + command.verb + "'");
-  Outcome outcome = found->second(state, command);
+  const Verb* verb = find_verb(command.verb);
+  if (!verb) throw UsageError("unknown command '" + command.verb + "'");
+  Outcome outcome = verb->run(state, command);
   if (!outcome.message.empty() || state.status_is_error) state.status = outcome.message;
   state.status_is_error = false;
   return outcome;
@@ -529,22 +665,14 @@ bool execute_reporting(AppState& state, const Command& command, Outcome* outcome
 }
 
 RegistrationJob prepare_registration(AppState& state, const Command& command) {
-  if (!state.shapes.loaded()) throw UsageError("no model is loaded (load MODEL.prm first)");
+  require_model(state);
   if (state.registration.observed.rows() == 0)
     throw UsageError("no observation is loaded (load CLOUD first)");
   RegistrationJob job{state.shapes.model, state.registration.observed, {}};
-  job.settings.variant = core::parse_variant(command.arguments.at(0));
-  if (!command.option("direction").empty())
-    job.settings.direction = core::parse_direction(command.option("direction"));
-  if (!command.option("loss").empty()) job.settings.loss = core::parse_loss(command.option("loss"));
-  if (!command.option("iterations").empty())
-    job.settings.outer_iterations = integer(command.option("iterations"), "iterations");
-  const std::string viewpoint = command.option("viewpoint");
-  if (viewpoint == "none")
-    state.registration.viewpoint.reset();
-  else if (!viewpoint.empty())
-    state.registration.viewpoint = core::parse_vector3(viewpoint, "viewpoint=X,Y,Z|none");
-  job.settings.viewpoint = state.registration.viewpoint;
+  job.settings.viewpoint = state.registration.viewpoint;  // from views.json, or an earlier viewpoint=
+  core::set_registration_option(job.settings, "variant", command.arguments.at(0));
+  for (const auto& [name, value] : command.options) core::set_registration_option(job.settings, name, value);
+  state.registration.viewpoint = job.settings.viewpoint;  // viewpoint=none forgets it for later runs too
   return job;
 }
 
@@ -554,7 +682,7 @@ Outcome apply_registration(AppState& state, const RegistrationJob& job, core::Re
   state.registration.result = std::move(result);
   state.mode = Mode::registration;
   std::ostringstream text;
-  text << "registered (" << core::to_string(job.settings.variant) << ") in "
+  text << "registered (" << core::enum_name(job.settings.variant) << ") in "
        << state.registration.result->seconds << " s, " << state.registration.result->history.size()
        << " steps";
   return message(text.str());

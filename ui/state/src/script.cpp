@@ -2,84 +2,13 @@
 
 #include <algorithm>
 #include <fstream>
-#include <map>
 #include <sstream>
 
 #include "partreg/core/errors.hpp"
+#include "partreg/ui/executor.hpp"
 
 namespace partreg::ui {
 namespace {
-
-// Arity and accepted options of each verb: min..max positional arguments.
-struct Signature {
-  int min_arguments = 0;
-  int max_arguments = 0;
-  std::vector<std::string> options;
-  std::string synopsis;
-};
-
-const std::map<std::string, Signature>& signatures() {
-  static const std::map<std::string, Signature> table = {
-      {"load", {1, 1, {}, "PATH  (a model .prm, a mesh to label, or a cloud to register)"}},
-      {"load_observed", {1, 1, {"points"}, "PATH [points=N]  (a cloud or a mesh sampled to N points)"}},
-      {"load_frames",
-       {1, 1, {}, "PATH  (frames on the canonical, e.g. grasps: drawn at the registration's end)"}},
-      {"load_labels", {1, 1, {}, "PATH  (a labels file for the loaded mesh)"}},
-      {"save_labels", {1, 1, {}, "PATH"}},
-      {"mode", {1, 1, {}, "labelling | shape | registration"}},
-      {"create_part", {1, 1, {}, "NAME"}},
-      {"select_part", {1, 1, {}, "NAME"}},
-      {"rename_part", {2, 2, {}, "NAME NEW_NAME"}},
-      {"recolor_part", {4, 4, {}, "NAME R G B  (0-255)"}},
-      {"merge_part", {2, 2, {}, "FROM INTO"}},
-      {"delete_part", {1, 1, {}, "NAME"}},
-      {"paint", {2, 2, {"radius"}, "X Y [radius=PIXELS]  (pixels from the top-left corner)"}},
-      {"fill", {2, 2, {}, "X Y"}},
-      {"select_box", {1, 1, {}, "X0,Y0,Z0,X1,Y1,Z1"}},
-      {"select_plane", {1, 1, {}, "PX,PY,PZ,NX,NY,NZ"}},
-      {"select_sphere", {1, 1, {}, "CX,CY,CZ,R"}},
-      {"brush", {1, 1, {}, "RADIUS_PIXELS"}},
-      {"undo", {0, 0, {}, ""}},
-      {"redo", {0, 0, {}, ""}},
-      {"space", {1, 1, {}, "holistic | PART"}},
-      {"set_latent", {3, 3, {}, "SPACE K VALUE  (K from 1; VALUE in standard deviations)"}},
-      {"animate", {1, 2, {}, "SPACE K | off  (slider K sweeps -2..+2 sd, 4 s a cycle)"}},
-      {"reset_latents", {0, 1, {}, "[SPACE]"}},
-      {"show_instance",
-       {1,
-        1,
-        {},
-        "NAME | INDEX | none  (a training instance drawn beside the sliders' shape; INDEX from 1)"}},
-      {"instance_latent",
-       {1, 1, {"space"}, "NAME | INDEX [space=SPACE]  (the sliders set to that training instance's latent)"}},
-      {"sample_latents", {1, 1, {}, "SEED  (every slider of the current space drawn from N(0, 1))"}},
-      {"register",
-       {1,
-        1,
-        {"direction", "loss", "iterations", "viewpoint"},
-        "holistic | partwise | hol+part [direction=observed|canonical|symmetric] [loss=huber|squared|cauchy|"
-        "trimmed] [iterations=N] [viewpoint=X,Y,Z|none]"}},
-      {"save_result",
-       {1, 1, {}, "FOLDER  (result.json, points.ply, mesh.ply, frames.json, as `partreg register` writes)"}},
-      {"partial_view",
-       {1, 1, {"count"}, "I [count=42]  (what a depth camera sees of the observation from view I)"}},
-      {"perturb",
-       {2, 2, {"seed"}, "noise|outliers|rotation|translation LEVEL [seed=S]  (the paper's units)"}},
-      {"train", {1, 1, {"out"}, "DATASET [out=MODEL.prm]  (the labelled mesh becomes the canonical)"}},
-      {"step", {1, 1, {}, "N  (forward N history steps; negative goes back)"}},
-      {"goto_step", {1, 1, {}, "I | first | last"}},
-      {"camera", {1, 1, {}, "front | side | top | iso"}},
-      {"orbit", {2, 2, {}, "D_AZIMUTH_DEG D_ELEVATION_DEG"}},
-      {"zoom", {1, 1, {}, "FACTOR  (>1 moves closer)"}},
-      {"pan", {2, 2, {}, "DX DY  (pixels)"}},
-      {"centre", {2, 2, {}, "X Y  (orbit about the surface point under the pixel)"}},
-      {"resize", {2, 2, {}, "WIDTH HEIGHT"}},
-      {"panels", {1, 1, {}, "on | off"}},
-      {"screenshot", {1, 1, {}, "PATH.png"}},
-      {"quit", {0, 0, {}, ""}},
-  };
-  return table;
-}
 
 [[noreturn]] void fail(int line_number, const std::string& what) {
   throw UsageError((line_number > 0 ? "line " + std::to_string(line_number) + ": " : std::string()) + what);
@@ -143,7 +72,7 @@ Command make_command(const std::string& verb, std::vector<std::string> arguments
 const std::vector<std::pair<std::string, std::string>>& command_synopses() {
   static const std::vector<std::pair<std::string, std::string>> list = [] {
     std::vector<std::pair<std::string, std::string>> out;
-    for (const auto& [verb, signature] : signatures()) out.emplace_back(verb, signature.synopsis);
+    for (const Verb& verb : verbs()) out.emplace_back(verb.name, verb.synopsis);
     return out;
   }();
   return list;
@@ -152,9 +81,8 @@ const std::vector<std::pair<std::string, std::string>>& command_synopses() {
 bool parse_command(const std::string& line, int line_number, Command& command) {
   const std::vector<std::string> tokens = tokenize(line, line_number);
   if (tokens.empty()) return false;
-  const auto found = signatures().find(tokens[0]);
-  if (found == signatures().end()) fail(line_number, "unknown command '" + tokens[0] + "' (see docs/gui.md)");
-  const Signature& signature = found->second;
+  const Verb* verb = find_verb(tokens[0]);
+  if (!verb) fail(line_number, "unknown command '" + tokens[0] + "' (see docs/gui.md)");
   Command parsed;
   parsed.verb = tokens[0];
   parsed.line = line_number;
@@ -165,13 +93,13 @@ bool parse_command(const std::string& line, int line_number, Command& command) {
       continue;
     }
     const std::string key = tokens[i].substr(0, equals);
-    if (std::find(signature.options.begin(), signature.options.end(), key) == signature.options.end())
+    if (std::find(verb->options.begin(), verb->options.end(), key) == verb->options.end())
       fail(line_number, parsed.verb + " takes no option '" + key + "'");
     parsed.options.emplace_back(key, tokens[i].substr(equals + 1));
   }
   const int count = static_cast<int>(parsed.arguments.size());
-  if (count < signature.min_arguments || count > signature.max_arguments)
-    fail(line_number, "usage: " + parsed.verb + " " + signature.synopsis);
+  if (count < verb->min_arguments || count > verb->max_arguments)
+    fail(line_number, "usage: " + parsed.verb + " " + verb->synopsis);
   command = std::move(parsed);
   return true;
 }

@@ -35,7 +35,7 @@ std::string perturb_observation(AppState& state, const std::string& kind_name, d
                                 std::uint64_t seed) {
   RegistrationDocument& registration = state.registration;
   if (registration.observed.rows() == 0) throw UsageError("no observation to perturb (load CLOUD first)");
-  const eval::Perturbation kind = eval::parse_perturbation(kind_name);
+  const eval::Perturbation kind = core::parse_enum<eval::Perturbation>(kind_name);
   const double diagonal = core::bounding_box_diagonal(registration.observed);
   const eval::Perturbed perturbed =
       eval::perturb(registration.observed, kind, eval::relative_level(kind, paper_level), diagonal, seed);

@@ -12,45 +12,24 @@
 #include <vector>
 
 #include "partreg/core/category_model.hpp"
+#include "partreg/core/registration_settings.hpp"
 
 namespace partreg::core {
 
-enum class Variant { holistic, partwise, hol_part };
-/// Which closest points the objective sums over.
-enum class Direction {
-  canonical_to_observed,  ///< the paper's Eq. 3: every canonical point to its closest observed point
-  observed_to_canonical,  ///< every observed point to its closest deformed canonical point
-  symmetric               ///< both, each normalised by its point count
+/// Why a space's fit stopped.
+enum class StopReason {
+  converged,       ///< the cost or the parameters stopped moving (ConvergenceSettings::tolerance)
+  max_iterations,  ///< ConvergenceSettings::outer_iterations refreshes ran
+  no_pairs         ///< no correspondence was left to fit (nothing visible, or an empty part)
 };
-enum class Loss { squared, huber, cauchy, trimmed };
 
-Variant parse_variant(
-    const std::string& name);  ///< "holistic" | "partwise" | "hol+part"; UsageError otherwise
-std::string to_string(Variant variant);
-Direction parse_direction(const std::string& name);  ///< "canonical" | "observed" | "symmetric"
-Loss parse_loss(const std::string& name);            ///< "squared" | "huber" | "cauchy" | "trimmed"
-std::string to_string(Direction direction);          ///< the name parse_direction reads
-std::string to_string(Loss loss);                    ///< the name parse_loss reads
-
-/// Registration settings. Lengths are in normalised units (the model's canonical diagonal is 1).
-struct RegistrationSettings {
-  Variant variant = Variant::holistic;
-  Direction direction =
-      Direction::observed_to_canonical;  ///< measured best on partial views: docs/registration.md
-  Loss loss = Loss::huber;
-  double loss_scale = 0.02;     ///< Huber/Cauchy scale (normalised length)
-  double trim_fraction = 0.1;   ///< trimmed loss: share of the worst correspondences dropped each step
-  double prior_weight = 1e-4;   ///< weight of the Gaussian prior sum_k x_k^2 / var_k against the data term
-  bool estimate_scale = false;  ///< also fit a uniform scale
-  std::optional<Eigen::Vector3d>
-      viewpoint;                      ///< observed frame, data units: only canonical points facing it count
-  bool align_principal_axes = false;  ///< start from the 4 rotations aligning principal axes (poses far off)
-  int restarts = 1;                   ///< initial rotations tried about the up axis (the lowest cost wins)
-  Eigen::Vector3d up = Eigen::Vector3d::UnitY();  ///< the category's up axis (canonical frame)
-  int outer_iterations = 25;                      ///< correspondence refreshes
-  int inner_iterations = 4;                       ///< Ceres iterations per refresh
-  double tolerance = 1e-5;     ///< stop when the cost changes by less than this, relatively
-  int observed_points = 2000;  ///< farthest-point subset of the observation matched each step (measured)
+template <>
+struct EnumNames<StopReason> {
+  static constexpr const char* what = "stop reason";
+  static constexpr std::array<std::pair<StopReason, const char*>, 3> table{
+      {{StopReason::converged, "converged"},
+       {StopReason::max_iterations, "max_iterations"},
+       {StopReason::no_pairs, "no_pairs"}}};
 };
 
 /// The fit of one space.
@@ -62,6 +41,7 @@ struct SpaceFit {
   double scale = 1.0;
   double cost = 0.0;
   int iterations = 0;
+  StopReason stop_reason = StopReason::max_iterations;
   double seconds = 0.0;
 };
 
@@ -92,7 +72,8 @@ struct RegistrationResult {
 
 /// Registers `model` to `observed` (data units, any frame near the category's). Throws InputError for fewer
 /// than 10 finite points or an observation wildly out of scale with the model; UsageError for a part-based
-/// variant on a model without parts.
+/// variant on a model without parts or settings out of range (validate()). Parallel parts use the calling
+/// thread's budget (parallel.hpp).
 RegistrationResult register_observation(const CategoryModel& model, const Points& observed,
                                         const RegistrationSettings& settings = {});
 

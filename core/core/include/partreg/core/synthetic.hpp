@@ -9,15 +9,22 @@
 #include <string>
 #include <vector>
 
+#include "partreg/core/enum_names.hpp"
 #include "partreg/core/types.hpp"
 
 namespace partreg::core {
 
 enum class SyntheticCategory { mug, drill, spray_bottle };
 
-/// "mug", "drill" or "spray_bottle"; UsageError listing those for anything else.
-SyntheticCategory parse_synthetic_category(const std::string& name);
-std::string to_string(SyntheticCategory category);
+template <>
+struct EnumNames<SyntheticCategory> {
+  static constexpr const char* what = "synthetic category";
+  static constexpr std::array<std::pair<SyntheticCategory, const char*>, 3> table{
+      {{SyntheticCategory::mug, "mug"},
+       {SyntheticCategory::drill, "drill"},
+       {SyntheticCategory::spray_bottle, "spray_bottle"}}};
+};
+
 /// Part names in part-index order: mug {body, handle}; drill {base, body, chuck}; spray_bottle {body, neck,
 /// trigger}.
 std::vector<std::string> part_names(SyntheticCategory category);

@@ -10,15 +10,28 @@
 #include <string>
 #include <vector>
 
+#include "partreg/core/enum_names.hpp"
 #include "partreg/core/types.hpp"
 
 namespace partreg::eval {
 
 enum class Perturbation { none, noise, outliers, rotation, translation };
 
-/// "none" | "noise" | "outliers" | "rotation" | "translation"; UsageError otherwise.
-Perturbation parse_perturbation(const std::string& name);
-std::string to_string(Perturbation kind);
+}  // namespace partreg::eval
+
+template <>
+struct partreg::core::EnumNames<partreg::eval::Perturbation> {
+  using P = partreg::eval::Perturbation;
+  static constexpr const char* what = "perturbation";
+  static constexpr std::array<std::pair<P, const char*>, 5> table{{{P::none, "none"},
+                                                                   {P::noise, "noise"},
+                                                                   {P::outliers, "outliers"},
+                                                                   {P::rotation, "rotation"},
+                                                                   {P::translation, "translation"}}};
+};
+
+namespace partreg::eval {
+
 /// The four kinds the robustness sweeps use, in the paper's order.
 const std::vector<Perturbation>& sweep_kinds();
 

@@ -12,7 +12,7 @@
 
 #include "partreg/core/registration.hpp"
 #include "partreg/core/training.hpp"
-#include "partreg/eval/metrics.hpp"
+#include "partreg/core/truth_errors.hpp"
 #include "partreg/eval/perturbation.hpp"
 #include "partreg/eval/views.hpp"
 
@@ -71,7 +71,7 @@ struct EvalRow {
   double level = 0.0;        ///< the level applied: relative to the diagonal for lengths
   double diagonal = 0.0;     ///< the instance's bounding-box diagonal (data units)
   int observed_points = 0;
-  RegistrationErrors errors;
+  core::TruthErrors errors;
   double seconds = 0.0;  ///< registration time
 };
 

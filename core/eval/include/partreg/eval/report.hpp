@@ -20,14 +20,14 @@ std::vector<EvalRow> read_rows_csv(const std::filesystem::path& path);
 
 /// The mean of Eq. 5 (normalised by the squared diagonal) over the rows that match; NaN when none match.
 /// `partial`: partial views (true) or the full view (false). `level_index` -1 selects the clean rows.
-double mean_eq5_normalised(const std::vector<EvalRow>& rows, const std::string& category,
-                           const std::string& variant, bool partial, Perturbation kind = Perturbation::none,
-                           int level_index = -1);
+double mean_eq5_per_diagonal2(const std::vector<EvalRow>& rows, const std::string& category,
+                              const std::string& variant, bool partial,
+                              Perturbation kind = Perturbation::none, int level_index = -1);
 
 /// The clean (unperturbed) mean Eq. 5 over only the observations that the sweeps perturbed, so that it is
 /// the sweeps' level 0; NaN when there are no sweeps.
-double swept_clean_eq5_normalised(const std::vector<EvalRow>& rows, const std::string& category,
-                                  const std::string& variant, bool partial);
+double swept_clean_eq5_per_diagonal2(const std::vector<EvalRow>& rows, const std::string& category,
+                                     const std::string& variant, bool partial);
 
 /// The Markdown report: Tables 1 and 2 (mean Eq. 5 x 1e4 on full and partial views, per category and
 /// variant), Chamfer, per-part and correspondence errors, the sweeps per category, and run times.

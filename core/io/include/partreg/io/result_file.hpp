@@ -11,22 +11,30 @@
 #include "partreg/core/category_model.hpp"
 #include "partreg/core/deformation.hpp"
 #include "partreg/core/registration.hpp"
+#include "partreg/core/truth_errors.hpp"
 
 namespace partreg::io {
 
 /// A 4x4 matrix as four rows.
 nlohmann::json matrix_json(const Eigen::Matrix4d& matrix);
 
-/// Where a result came from and with which objective, as written into its JSON.
+/// The version of the result JSON's layout (its `format_version` key); raised when a key changes meaning.
+constexpr int kResultFormatVersion = 2;
+
+/// Where a result came from, as written into its JSON.
 struct ResultSource {
   std::string model_path, observed_path;
-  std::string direction, loss;  ///< the names core::parse_direction and core::parse_loss read
 };
 
-/// The result as JSON: model, observation, variant and objective; per space its latent, pose
-/// (T_observed_canonical), scale, cost, steps and seconds; the closest-point fit (data units and normalised)
+/// The result as JSON: format version, model, observation, variant and every registration setting by its
+/// option name (registration_options.hpp); per space its latent, pose (T_observed_canonical), scale, cost,
+/// steps, stop reason and seconds; the closest-point fit (data units and normalised by the model's diagonal)
 /// and the total time.
-nlohmann::json result_json(const core::RegistrationResult& result, const ResultSource& source);
+nlohmann::json result_json(const core::RegistrationResult& result, const core::RegistrationSettings& settings,
+                           const ResultSource& source);
+
+/// The errors against a ground-truth instance (truth_errors.hpp), keys named as its fields.
+nlohmann::json truth_errors_json(const core::TruthErrors& errors);
 
 /// Writes a result folder, all of it or nothing (the folder must not exist or be empty): result.json
 /// (`report`), points.ply (the deformed canonical points with their part), mesh.ply (the deformed canonical

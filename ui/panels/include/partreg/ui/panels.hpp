@@ -24,8 +24,8 @@ struct PanelState {
   std::string open_path;                 ///< the file the Open button loads (model, mesh or cloud)
   std::string frames_path;               ///< frames attached to the canonical (registration tab)
   std::string result_folder = "result";  ///< where Save result writes
-  int direction = 1;                     ///< 0 canonical, 1 observed (the default), 2 symmetric
-  int loss = 1;                          ///< 0 squared, 1 huber (the default), 2 cauchy, 3 trimmed
+  int direction = 1;                     ///< index into EnumNames<Direction>: observed (the default)
+  int loss = 1;                          ///< index into EnumNames<Loss>: huber (the default)
   bool use_viewpoint = true;             ///< count only canonical points facing the known viewpoint
   int variant = -1;                      ///< 0 holistic, 1 partwise, 2 hol+part; -1 = the last registration's
   int sample_seed = 1;

@@ -9,6 +9,7 @@
 #include <limits>
 #include <string>
 
+#include "partreg/core/enum_names.hpp"
 #include "partreg/core/types.hpp"
 
 namespace partreg::render {
@@ -27,9 +28,17 @@ struct Bounds {
 };
 
 enum class View { front, side, top, iso };
+}  // namespace partreg::render
 
-/// "front" | "side" | "top" | "iso"; UsageError listing them otherwise.
-View parse_view(const std::string& name);
+template <>
+struct partreg::core::EnumNames<partreg::render::View> {
+  using E = partreg::render::View;
+  static constexpr const char* what = "view";
+  static constexpr std::array<std::pair<E, const char*>, 4> table{
+      {{E::front, "front"}, {E::side, "side"}, {E::top, "top"}, {E::iso, "iso"}}};
+};
+
+namespace partreg::render {
 
 /// A perspective camera given by where it is, what it looks at and which way is up (scene units).
 struct Camera {

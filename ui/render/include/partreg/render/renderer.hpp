@@ -15,16 +15,29 @@ namespace partreg::render {
 
 enum class Background { white, transparent };
 
-/// "white" | "transparent"; UsageError otherwise.
-Background parse_background(const std::string& name);
-
 /// How edges are smoothed. Multisampling is the best looking and the slowest on software GL (llvmpipe
 /// spends two to three times as long per frame); edge smoothing (smooth_edges on the read-back image)
 /// costs a few milliseconds. The window blits the frame before read-back, so it shows edge smoothing as none.
 enum class Antialiasing { multisample, edge, none };
+}  // namespace partreg::render
 
-/// "msaa" | "edge" | "none"; UsageError otherwise.
-Antialiasing parse_antialiasing(const std::string& name);
+template <>
+struct partreg::core::EnumNames<partreg::render::Background> {
+  using E = partreg::render::Background;
+  static constexpr const char* what = "background";
+  static constexpr std::array<std::pair<E, const char*>, 2> table{
+      {{E::white, "white"}, {E::transparent, "transparent"}}};
+};
+
+template <>
+struct partreg::core::EnumNames<partreg::render::Antialiasing> {
+  using E = partreg::render::Antialiasing;
+  static constexpr const char* what = "antialiasing";
+  static constexpr std::array<std::pair<E, const char*>, 3> table{
+      {{E::multisample, "msaa"}, {E::edge, "edge"}, {E::none, "none"}}};
+};
+
+namespace partreg::render {
 
 /// What a frame may cost. Interactive frames (drawn while a slider, the camera or an animation moves) use one
 /// sample per pixel and draw dense meshes as coarse proxies (MeshProxy): on llvmpipe a frame's cost grows

@@ -12,6 +12,7 @@
 
 #include "partreg/core/category_model.hpp"
 #include "partreg/core/deformation.hpp"
+#include "partreg/core/enum_names.hpp"
 #include "partreg/core/registration.hpp"
 #include "partreg/io/labels_file.hpp"
 #include "partreg/ui/live_deformation.hpp"
@@ -21,10 +22,17 @@ namespace partreg::ui {
 
 /// What the viewport shows.
 enum class Mode { labelling, shape_space, registration };
+}  // namespace partreg::ui
 
-/// "labelling" | "shape" | "registration"; UsageError otherwise.
-Mode parse_mode(const std::string& name);
-std::string to_string(Mode mode);
+template <>
+struct partreg::core::EnumNames<partreg::ui::Mode> {
+  using E = partreg::ui::Mode;
+  static constexpr const char* what = "mode";
+  static constexpr std::array<std::pair<E, const char*>, 3> table{
+      {{E::labelling, "labelling"}, {E::shape_space, "shape"}, {E::registration, "registration"}}};
+};
+
+namespace partreg::ui {
 
 /// A canonical mesh being labelled (data units), one label per face.
 /// Faces sharing an edge with each face, as a flat list (CSR): neighbours of f are

@@ -3,8 +3,10 @@
 /// Applying commands to the app state. A command that fails (a file that does not load, a labels file for
 /// another mesh, an unknown part) throws and leaves the state as it was; the caller shows the message.
 
+#include <functional>
 #include <memory>
 #include <string>
+#include <vector>
 
 #include "partreg/core/registration.hpp"
 #include "partreg/ui/app_state.hpp"
@@ -18,6 +20,23 @@ struct Outcome {
   std::string message;          ///< one line for the status bar (may be empty)
   std::string screenshot_path;  ///< non-empty: render the current frame and write it here
 };
+
+/// One verb of the app's command language, declared once: what it takes (checked when a script line or a
+/// panel's command is parsed) and what it does.
+struct Verb {
+  std::string name;                                       ///< e.g. "paint"
+  int min_arguments = 0;                                  ///< positional arguments, at least
+  int max_arguments = 0;                                  ///< and at most
+  std::vector<std::string> options;                       ///< the `key=value` options it accepts
+  std::string synopsis;                                   ///< its arguments, for help and docs/gui.md
+  std::function<Outcome(AppState&, const Command&)> run;  ///< applies it (throws as execute() says)
+};
+
+/// Every verb, in the order docs/gui.md lists them.
+const std::vector<Verb>& verbs();
+
+/// The verb called `name`, or null.
+const Verb* find_verb(const std::string& name);
 
 /// A `register` command made ready to run anywhere: it holds everything the registration reads, so the
 /// window can run it off the UI thread and keep drawing.

@@ -1,0 +1,47 @@
+#include "partreg/commands/registration_flags.hpp"
+
+#include "partreg/core/errors.hpp"
+#include "partreg/core/registration_options.hpp"
+
+namespace partreg::app {
+namespace {
+
+// Runs `set` and puts the flag's name before a bad value's message.
+void set_naming_flag(const core::RegistrationOption& option, core::RegistrationSettings& settings,
+                     const std::string& value) {
+  try {
+    option.set(settings, value);
+  } catch (const UsageError& error) {
+    throw UsageError("--" + option.name + ": " + error.what());
+  }
+}
+
+}  // namespace
+
+void add_registration_flags(CLI::App* command, core::RegistrationSettings& settings,
+                            const std::set<std::string>& skip) {
+  const core::RegistrationSettings defaults;
+  for (const core::RegistrationOption& option : core::registration_options()) {
+    if (skip.count(option.name)) continue;
+    const std::string flag = "--" + option.name;
+    if (option.is_flag) {
+      command->add_flag_callback(
+          flag, [&settings, &option] { set_naming_flag(option, settings, "true"); }, option.help);
+      continue;
+    }
+    command
+        ->add_option_function<std::string>(
+            flag,
+            [&settings, &option](const std::string& value) { set_naming_flag(option, settings, value); },
+            option.help + " (default " + option.get(defaults) + ")")
+        ->type_name(option.value_name);
+  }
+}
+
+void add_threads_flag(CLI::App* command, int& threads) {
+  command->add_option("--threads", threads, "threads to use, all counted (0 = all cores)")
+      ->check(CLI::NonNegativeNumber)
+      ->capture_default_str();
+}
+
+}  // namespace partreg::app

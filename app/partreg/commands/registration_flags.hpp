@@ -1,0 +1,24 @@
+#pragma once
+/// \file
+/// The command line's face of the registration options (core/registration_options.hpp) and of the thread
+/// budget: every command that registers adds them here, so `register`, `eval` and `figure compare` take the
+/// same flags with the same defaults.
+
+#include <CLI/CLI.hpp>
+#include <set>
+#include <string>
+
+#include "partreg/core/registration_settings.hpp"
+
+namespace partreg::app {
+
+/// Adds `--NAME` for every registration option except those in `skip` (a command that sets one itself, as
+/// eval's per-row variant). Values are parsed into `settings` while the command line is read; a bad value is
+/// a UsageError naming the flag.
+void add_registration_flags(CLI::App* command, core::RegistrationSettings& settings,
+                            const std::set<std::string>& skip = {});
+
+/// Adds `--threads N` (0 = all cores): the command's thread budget (core/parallel.hpp).
+void add_threads_flag(CLI::App* command, int& threads);
+
+}  // namespace partreg::app

@@ -1,0 +1,100 @@
+#pragma once
+/// \file
+/// What a registration is asked to do, grouped by concern: the objective it minimises, where it starts, when
+/// it stops and how much of the observation it looks at. Every front end (the `register`, `eval` and
+/// `figure compare` commands, the app's `register` verb, the Python module) sets these through one table of
+/// named options (registration_options.hpp). Lengths are in normalised units: the model's canonical diagonal
+/// is 1. Choices and the measurements behind the defaults: docs/registration.md.
+
+#include <Eigen/Core>
+#include <optional>
+
+#include "partreg/core/enum_names.hpp"
+
+namespace partreg::core {
+
+/// Which shape spaces are fitted, and how (paper, section 3.2).
+enum class Variant {
+  holistic,  ///< one space for the whole object
+  partwise,  ///< every part in its own space and pose, independently
+  hol_part   ///< holistic first; its pose and deformation initialise the parts
+};
+
+/// Which closest points the objective sums over.
+enum class Direction {
+  canonical_to_observed,  ///< the paper's Eq. 3: every canonical point to its closest observed point
+  observed_to_canonical,  ///< every observed point to its closest deformed canonical point
+  symmetric               ///< both, each normalised by its point count
+};
+
+/// The robust loss on each closest-point distance.
+enum class Loss { squared, huber, cauchy, trimmed };
+
+/// The objective: what a pose and latent are scored by.
+struct ObjectiveSettings {
+  Direction direction = Direction::observed_to_canonical;  ///< measured best on partial views
+  Loss loss = Loss::huber;
+  double loss_scale = 0.02;    ///< Huber/Cauchy scale (normalised length)
+  double trim_fraction = 0.1;  ///< trimmed loss: share of the worst correspondences dropped each step, [0, 1)
+  double prior_weight = 1e-4;  ///< weight of the Gaussian prior sum_k x_k^2 / var_k against the data term
+  bool estimate_scale = false;  ///< also fit a uniform scale (bounded below by 0.2)
+};
+
+/// Where the search starts: the initial rotations tried (the lowest final cost wins).
+struct InitialisationSettings {
+  bool align_principal_axes = false;  ///< also start from the 4 rotations aligning principal axes
+  int restarts = 1;                   ///< initial rotations about the up axis, evenly spaced over 360 degrees
+  Eigen::Vector3d up =
+      Eigen::Vector3d::UnitY();  ///< the category's up axis (canonical frame, any length > 0)
+};
+
+/// When a space's fit stops.
+struct ConvergenceSettings {
+  int outer_iterations = 25;  ///< correspondence refreshes at most
+  int inner_iterations = 4;   ///< Ceres iterations per refresh
+  double tolerance = 1e-5;    ///< stop when the cost changes by less than this, relatively, or nothing moves
+};
+
+/// How much of the observation each step matches.
+struct SamplingSettings {
+  int observed_points = 2000;  ///< farthest-point subset of the observation (measured: docs/registration.md)
+};
+
+/// One registration request.
+struct RegistrationSettings {
+  Variant variant = Variant::holistic;
+  ObjectiveSettings objective;
+  InitialisationSettings initialisation;
+  ConvergenceSettings convergence;
+  SamplingSettings sampling;
+  /// Camera position (observed frame, data units): only canonical points facing it are matched. Unknown when
+  /// empty.
+  std::optional<Eigen::Vector3d> viewpoint;
+};
+
+template <>
+struct EnumNames<Variant> {
+  static constexpr const char* what = "variant";
+  static constexpr std::array<std::pair<Variant, const char*>, 3> table{
+      {{Variant::holistic, "holistic"}, {Variant::partwise, "partwise"}, {Variant::hol_part, "hol+part"}}};
+};
+
+template <>
+struct EnumNames<Direction> {
+  static constexpr const char* what = "direction";
+  static constexpr std::array<std::pair<Direction, const char*>, 3> table{
+      {{Direction::canonical_to_observed, "canonical"},
+       {Direction::observed_to_canonical, "observed"},
+       {Direction::symmetric, "symmetric"}}};
+};
+
+template <>
+struct EnumNames<Loss> {
+  static constexpr const char* what = "loss";
+  static constexpr std::array<std::pair<Loss, const char*>, 4> table{{{Loss::squared, "squared"},
+                                                                      {Loss::huber, "huber"},
+                                                                      {Loss::cauchy, "cauchy"},
+                                                                      {Loss::trimmed, "trimmed"}}};
+};
+
+}  // namespace partreg::core

@@ -1,0 +1,58 @@
+#pragma once
+/// \file
+/// How far a registration is from the truth: every error figure partreg reports against a ground-truth
+/// instance is computed here, and only here (paper, section 4; `register --truth`, `eval`, the app, Python).
+///
+/// One normalisation: lengths are divided by the ground-truth instance's bounding-box diagonal D, taken in
+/// the instance's own frame (the evaluation's perturbations move the truth rigidly but do not change D).
+/// Names carry their units: `_per_diagonal` is a length over D, `_per_diagonal2` a squared length over D^2.
+
+#include <map>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "partreg/core/kdtree.hpp"
+#include "partreg/core/types.hpp"
+
+namespace partreg::core {
+
+/// The errors of one registration against the whole true instance.
+struct TruthErrors {
+  double diagonal = 0.0;  ///< D: the truth's bounding-box diagonal (data units)
+  double eq5 = 0.0;       ///< the paper's Eq. 5: mean over deformed points of the squared distance to the
+                          ///< closest true point (data units squared)
+  double eq5_per_diagonal2 = 0.0;  ///< eq5 / D^2
+  double reverse_eq5 = 0.0;        ///< Eq. 5 the other way: over the true points (data units squared)
+  double symmetric_rms_per_diagonal = 0.0;  ///< (sqrt(eq5) + sqrt(reverse_eq5)) / 2 / D: the headline figure
+  double chamfer = 0.0;                     ///< mean closest-point distance each way, halved (data units)
+  double chamfer_per_diagonal = 0.0;        ///< chamfer / D
+  std::map<std::string, double> part_eq5_per_diagonal2;  ///< Eq. 5 over each part's deformed points / D^2
+  std::optional<double> correspondence_per_diagonal;     ///< mean distance to the true correspondent / D
+};
+
+/// The paper's Eq. 5: mean over `deformed` of the squared distance to the closest point of `truth` (squared
+/// units of the inputs). InputError for an empty set.
+double closest_point_error(const Points& deformed, const Points& truth);
+
+/// Symmetric Chamfer distance: the mean closest-point distance from a to b plus that from b to a, halved
+/// (units of the inputs). InputError for an empty set.
+double chamfer_distance(const Points& a, const Points& b);
+
+/// Every figure of `deformed` (deformed canonical points, observed frame, data units; part index per row in
+/// `part`, names in `part_names`) against `truth` (a dense sample of the whole true instance, same frame).
+/// `diagonal` is D (truth_diagonal() of the instance in its own frame). `truth_of_row` (rows as `deformed`,
+/// or null) holds where each canonical point truly is. InputError for empty sets or D <= 0.
+TruthErrors measure_against_truth(const Points& deformed, const Eigen::VectorXi& part,
+                                  const std::vector<std::string>& part_names, const KdTree& truth,
+                                  double diagonal, const Points* truth_of_row = nullptr);
+
+/// The same with the truth as points (its KD-tree built here).
+TruthErrors measure_against_truth(const Points& deformed, const Eigen::VectorXi& part,
+                                  const std::vector<std::string>& part_names, const Points& truth,
+                                  double diagonal, const Points* truth_of_row = nullptr);
+
+/// D of a true instance given in its own frame: its bounding-box diagonal (data units).
+double truth_diagonal(const Points& truth);
+
+}  // namespace partreg::core

@@ -1,0 +1,80 @@
+#include "partreg/core/truth_errors.hpp"
+
+#include "partreg/core/errors.hpp"
+#include "partreg/core/normalization.hpp"
+
+namespace partreg::core {
+namespace {
+
+Eigen::VectorXd squared_to_closest(const Points& from, const KdTree& to) {
+  if (from.rows() == 0 || to.size() == 0) throw InputError("cannot measure an error with an empty point set");
+  std::vector<int> index;
+  Eigen::VectorXd squared;
+  to.nearest_all(from, index, squared);
+  return squared;
+}
+
+std::map<std::string, double> per_part_mean(const Eigen::VectorXd& squared, const Eigen::VectorXi& part,
+                                            const std::vector<std::string>& part_names, double scale) {
+  std::map<std::string, double> means;
+  if (part.size() != squared.size()) return means;
+  for (std::size_t p = 0; p < part_names.size(); ++p) {
+    double sum = 0.0;
+    int count = 0;
+    for (Eigen::Index i = 0; i < part.size(); ++i)
+      if (part[i] == static_cast<int>(p)) sum += squared[i], ++count;
+    if (count > 0) means[part_names[p]] = sum / count / scale;
+  }
+  return means;
+}
+
+}  // namespace
+
+double closest_point_error(const Points& deformed, const Points& truth) {
+  if (truth.rows() == 0) throw InputError("cannot measure an error with an empty point set");
+  return squared_to_closest(deformed, KdTree(truth)).mean();
+}
+
+double chamfer_distance(const Points& a, const Points& b) {
+  if (a.rows() == 0 || b.rows() == 0) throw InputError("cannot measure an error with an empty point set");
+  return 0.5 * (squared_to_closest(a, KdTree(b)).cwiseSqrt().mean() +
+                squared_to_closest(b, KdTree(a)).cwiseSqrt().mean());
+}
+
+double truth_diagonal(const Points& truth) { return bounding_box_diagonal(truth); }
+
+TruthErrors measure_against_truth(const Points& deformed, const Eigen::VectorXi& part,
+                                  const std::vector<std::string>& part_names, const Points& truth,
+                                  double diagonal, const Points* truth_of_row) {
+  if (truth.rows() == 0) throw InputError("cannot measure an error with an empty point set");
+  return measure_against_truth(deformed, part, part_names, KdTree(truth), diagonal, truth_of_row);
+}
+
+TruthErrors measure_against_truth(const Points& deformed, const Eigen::VectorXi& part,
+                                  const std::vector<std::string>& part_names, const KdTree& truth,
+                                  double diagonal, const Points* truth_of_row) {
+  if (deformed.rows() == 0) throw InputError("cannot measure an error with an empty point set");
+  if (!(diagonal > 0.0))
+    throw InputError("the ground truth has no extent (its diagonal is " + std::to_string(diagonal) + ")");
+  const Eigen::VectorXd forward = squared_to_closest(deformed, truth);
+  const Eigen::VectorXd reverse = squared_to_closest(truth.points(), KdTree(deformed));
+  const double diagonal2 = diagonal * diagonal;
+  TruthErrors errors;
+  errors.diagonal = diagonal;
+  errors.eq5 = forward.mean();
+  errors.eq5_per_diagonal2 = errors.eq5 / diagonal2;
+  errors.reverse_eq5 = reverse.mean();
+  errors.symmetric_rms_per_diagonal =
+      0.5 * (std::sqrt(errors.eq5) + std::sqrt(errors.reverse_eq5)) / diagonal;
+  errors.chamfer = 0.5 * (forward.cwiseSqrt().mean() + reverse.cwiseSqrt().mean());
+  errors.chamfer_per_diagonal = errors.chamfer / diagonal;
+  errors.part_eq5_per_diagonal2 = per_part_mean(forward, part, part_names, diagonal2);
+  if (truth_of_row) {
+    if (truth_of_row->rows() != deformed.rows())
+      throw InputError("ground-truth correspondences do not match the deformed points");
+    errors.correspondence_per_diagonal = (deformed - *truth_of_row).rowwise().norm().mean() / diagonal;
+  }
+  return errors;
+}
+
+}  // namespace partreg::core

@@ -1,0 +1,118 @@
+#include "partreg/core/registration_options.hpp"
+
+#include <gtest/gtest.h>
+
+#include <fstream>
+#include <set>
+
+#include "partreg/core/errors.hpp"
+
+namespace partreg::core {
+namespace {
+
+std::string usage_message(const std::function<void()>& call) {
+  try {
+    call();
+  } catch (const UsageError& error) {
+    return error.what();
+  }
+  return "";
+}
+
+TEST(EnumNames, ParsePrintAndListOneTable) {
+  EXPECT_EQ(parse_enum<Variant>("hol+part"), Variant::hol_part);
+  EXPECT_EQ(enum_name(Direction::canonical_to_observed), "canonical");
+  EXPECT_EQ(enum_choices<Loss>(), "squared | huber | cauchy | trimmed");
+  for (const std::string& name : enum_names<Variant>()) EXPECT_EQ(enum_name(parse_enum<Variant>(name)), name);
+  const std::string message = usage_message([] { parse_enum<Variant>("wholistic"); });
+  EXPECT_NE(message.find("unknown variant 'wholistic'"), std::string::npos) << message;
+  EXPECT_NE(message.find("holistic, partwise, hol+part"), std::string::npos) << message;
+}
+
+TEST(RegistrationOptions, EveryOptionRoundTripsItsDefaultAndAChangedValue) {
+  const RegistrationSettings defaults;
+  for (const RegistrationOption& option : registration_options()) {
+    RegistrationSettings settings;
+    option.set(settings, option.get(defaults));
+    EXPECT_EQ(option.get(settings), option.get(defaults)) << option.name;
+  }
+  RegistrationSettings settings;
+  set_registration_option(settings, "direction", "symmetric");
+  set_registration_option(settings, "loss-scale", "0.035");
+  set_registration_option(settings, "restarts", "6");
+  set_registration_option(settings, "scale", "true");
+  set_registration_option(settings, "up", "0,0,2");
+  set_registration_option(settings, "viewpoint", "1,2,3");
+  set_registration_option(settings, "iterations", "9");
+  set_registration_option(settings, "observed-points", "500");
+  EXPECT_EQ(settings.objective.direction, Direction::symmetric);
+  EXPECT_DOUBLE_EQ(settings.objective.loss_scale, 0.035);
+  EXPECT_EQ(settings.initialisation.restarts, 6);
+  EXPECT_TRUE(settings.objective.estimate_scale);
+  EXPECT_EQ(settings.initialisation.up, Eigen::Vector3d(0, 0, 2));
+  ASSERT_TRUE(settings.viewpoint);
+  EXPECT_EQ(*settings.viewpoint, Eigen::Vector3d(1, 2, 3));
+  EXPECT_EQ(settings.convergence.outer_iterations, 9);
+  EXPECT_EQ(settings.sampling.observed_points, 500);
+  set_registration_option(settings, "viewpoint", "none");
+  EXPECT_FALSE(settings.viewpoint);
+  // The values a result file records read back into the same request.
+  RegistrationSettings copy;
+  for (const auto& [name, value] : registration_option_values(settings))
+    set_registration_option(copy, name, value);
+  EXPECT_EQ(registration_option_values(copy), registration_option_values(settings));
+}
+
+TEST(RegistrationOptions, BadValuesNameTheValueNotAFlag) {
+  RegistrationSettings settings;
+  const std::vector<std::pair<std::string, std::string>> bad = {{"restarts", "0"},
+                                                                {"restarts", "2.5"},
+                                                                {"restarts", "-3"},
+                                                                {"loss-scale", "nan"},
+                                                                {"up", "0,0,0"},
+                                                                {"viewpoint", "nan,0,0"},
+                                                                {"trim", "1.5"},
+                                                                {"loss", "l1"},
+                                                                {"iterations", "many"},
+                                                                {"scale", "maybe"},
+                                                                {"observed-points", "1e30"}};
+  for (const auto& [name, value] : bad) {
+    const std::string message = usage_message([&] { set_registration_option(settings, name, value); });
+    EXPECT_FALSE(message.empty()) << name << "=" << value << " was accepted";
+    EXPECT_EQ(message.find("--"), std::string::npos) << message;
+  }
+  EXPECT_FALSE(usage_message([&] { set_registration_option(settings, "restart", "2"); }).empty());
+  EXPECT_EQ(settings.initialisation.restarts, 1);  // nothing above changed it
+}
+
+TEST(RegistrationOptions, ValidateRefusesSettingsBuiltInCode) {
+  RegistrationSettings settings;
+  EXPECT_NO_THROW(validate(settings));
+  settings.initialisation.restarts = 0;
+  EXPECT_THROW(validate(settings), UsageError);
+  settings = {};
+  settings.initialisation.up = Eigen::Vector3d::Zero();
+  EXPECT_THROW(validate(settings), UsageError);
+  settings = {};
+  settings.objective.loss_scale = -1.0;
+  EXPECT_THROW(validate(settings), UsageError);
+}
+
+// docs/registration.md's table of settings lists exactly the declared options.
+TEST(RegistrationOptions, TheDocsTableListsEveryOption) {
+  std::ifstream file(std::string(PARTREG_SOURCE_DIR) + "/docs/registration.md");
+  ASSERT_TRUE(file) << "docs/registration.md not found";
+  std::set<std::string> documented;
+  bool in_table = false;
+  for (std::string line; std::getline(file, line);) {
+    if (line.rfind("| name | value | default | meaning |", 0) == 0) in_table = true;
+    if (in_table && line.empty()) break;
+    if (in_table && line.rfind("| `", 0) == 0) documented.insert(line.substr(3, line.find('`', 3) - 3));
+  }
+  std::set<std::string> declared;
+  for (const RegistrationOption& option : registration_options()) declared.insert(option.name);
+  EXPECT_EQ(documented, declared);
+}
+
+}  // namespace
+}  // namespace partreg::core
