@@ -9,7 +9,7 @@
 #include "partreg/core/deformation.hpp"
 #include "partreg/core/errors.hpp"
 #include "partreg/core/training.hpp"
-#include "partreg/eval/metrics.hpp"
+#include "partreg/core/truth_errors.hpp"
 #include "partreg/eval/views.hpp"
 #include "partreg/io/cloud_io.hpp"
 #include "partreg/io/dataset.hpp"
@@ -99,6 +99,14 @@ void bind_training(py::module_& m) {
 }
 
 void bind_registration(py::module_& m) {
+  // The docstring lists every keyword from the table, so help(partreg.register) cannot go out of date.
+  const std::string register_doc =
+      "Registers the model to observed points (N, 3) float64 (data units, any frame near the category's). "
+      "Keyword arguments are the registration options of `partreg register` ('-' as '_', same defaults): a bool "
+      "for a flag, a number, a name, or 3 numbers (viewpoint, up; None for no viewpoint). InputError for fewer "
+      "than 10 finite points, NaN points or an observation wildly out of scale; UsageError for a bad setting or "
+      "a part-based variant on a model without parts.\n\nKeywords (default, help):" +
+      registration_keywords_doc();
   m.def("register",
         [](const ModelPtr& model, py::handle points, const py::kwargs& keywords) {
           const core::RegistrationSettings settings = registration_settings(keywords);
@@ -106,13 +114,12 @@ void bind_registration(py::module_& m) {
           py::gil_scoped_release release;
           return std::make_shared<core::RegistrationResult>(core::register_observation(*model, observed, settings));
         },
-        py::arg("model").none(false), py::arg("points"),
-        "Registers the model to observed points (N, 3) float64 (data units, any frame near the category's). "
-        "Keyword arguments are the registration settings of `partreg register` ('-' as '_', same defaults: "
-        "registration_defaults()). InputError for fewer than 10 finite points, NaN points or an observation "
-        "wildly out of scale; UsageError for a bad setting or a part-based variant on a model without parts.");
+        py::arg("model").none(false), py::arg("points"), register_doc.c_str());  // pybind11 copies the text
   m.def("registration_defaults", &registration_defaults,
-        "Every registration keyword of register() with its default.");
+        "Every registration keyword of register() with its default (the command line's).");
+  m.def("registration_options", &registration_options,
+        "Every registration keyword: keyword, option (the command line's flag), value (its form), help (with "
+        "units), default.");
   m.def("deform_mesh", [](const ModelPtr& model, const ResultPtr& result) {
           return std::make_shared<core::Mesh>(core::deform_mesh(*model, *result));
         },
@@ -213,24 +220,30 @@ void bind_evaluation(py::module_& m) {
         "pixels, vertical field of view in degrees) at each of count icosphere directions; object frame and units.");
   m.def("measure_errors",
         [](py::handle deformed, py::handle part, const std::vector<std::string>& part_names, py::handle truth,
-           double diagonal) {
+           std::optional<double> diagonal) {
           const core::Points d = to_points(deformed, "deformed"), t = to_points(truth, "truth");
           const Eigen::VectorXi p = to_indices(part, "part");
           py::gil_scoped_release release;
-          const eval::RegistrationErrors e = eval::measure_errors(d, p, part_names, t, diagonal);
+          const core::TruthErrors e =
+              core::measure_against_truth(d, p, part_names, t, diagonal ? *diagonal : core::truth_diagonal(t));
           py::gil_scoped_acquire acquire;
           py::dict figures;
+          figures["diagonal"] = e.diagonal;
           figures["eq5"] = e.eq5;
-          figures["eq5_normalised"] = e.eq5_normalised;
+          figures["eq5_per_diagonal2"] = e.eq5_per_diagonal2;
+          figures["reverse_eq5"] = e.reverse_eq5;
+          figures["symmetric_rms_per_diagonal"] = e.symmetric_rms_per_diagonal;
           figures["chamfer"] = e.chamfer;
-          figures["chamfer_normalised"] = e.chamfer_normalised;
-          figures["part_eq5_normalised"] = e.part_eq5_normalised;
+          figures["chamfer_per_diagonal"] = e.chamfer_per_diagonal;
+          figures["part_eq5_per_diagonal2"] = e.part_eq5_per_diagonal2;
           return figures;
         },
-        py::arg("deformed"), py::arg("part"), py::arg("part_names"), py::arg("truth"), py::arg("diagonal"),
-        "The evaluation's error figures of deformed points (M, 3; part (M,)) against a dense sample of the true "
-        "instance (data units, same frame); diagonal: the truth's bounding-box diagonal. eq5 in data units "
-        "squared, chamfer in data units, *_normalised divided by diagonal (squared for eq5).");
+        py::arg("deformed"), py::arg("part"), py::arg("part_names"), py::arg("truth"),
+        py::arg("diagonal") = py::none(),
+        "Every error figure of deformed points (M, 3; part (M,) indexing part_names) against a dense sample of "
+        "the true instance (N, 3), same frame and data units (core/truth_errors.hpp, the one home of them): eq5 "
+        "and reverse_eq5 in data units squared, chamfer in data units, *_per_diagonal divided by D, "
+        "*_per_diagonal2 by D^2; D is `diagonal` or, when omitted, the truth's bounding-box diagonal.");
 }
 
 }  // namespace

@@ -184,6 +184,8 @@ void bind_registration_result(py::module_& m) {
       .def_readonly("scale", &core::SpaceFit::scale)
       .def_readonly("cost", &core::SpaceFit::cost)
       .def_readonly("iterations", &core::SpaceFit::iterations)
+      .def_property_readonly("stop_reason", [](const core::SpaceFit& s) { return core::enum_name(s.stop_reason); },
+                             "'converged', 'max_iterations' or 'no_pairs'")
       .def_readonly("seconds", &core::SpaceFit::seconds);
   py::class_<core::HistoryStep>(m, "HistoryStep", "The state after one outer step of one space.")
       .def_readonly("space", &core::HistoryStep::space)
@@ -194,7 +196,7 @@ void bind_registration_result(py::module_& m) {
       .def_readonly("seconds", &core::HistoryStep::seconds, "since the start of this space's registration");
   py::class_<core::RegistrationResult, std::shared_ptr<core::RegistrationResult>> result(
       m, "RegistrationResult", "What register() found.");
-  result.def_property_readonly("variant", [](const core::RegistrationResult& s) { return core::to_string(s.variant); })
+  result.def_property_readonly("variant", [](const core::RegistrationResult& s) { return core::enum_name(s.variant); })
       .def_readonly("fits", &core::RegistrationResult::fits, "per space: holistic first where it ran, then parts")
       .def_readonly("history", &core::RegistrationResult::history, "every outer step of every space, in order")
       .def_readonly("fit", &core::RegistrationResult::fit)

@@ -4,7 +4,7 @@
 # written against that prefix, in a scratch folder that looks like the repository root after the README's
 # commands (mugs.prm from the Python tests' fixture). Without ../shared/data the programs are still built
 # (and the module imported), then the test exits 77 (skip).
-# Usage: install_test.sh BUILD_DIR SOURCE_DIR DATA_DIR MODEL PYTHON
+# Usage: install_test.sh BUILD_DIR SOURCE_DIR DATA_DIR MODEL PYTHON (PYTHON "none": the module was not built)
 set -euo pipefail
 build_dir=$1 source_dir=$2 data_dir=$3 model=$4 python=$5
 scratch=$(mktemp -d)
@@ -46,12 +46,14 @@ done
 
 # The prefix is a temporary one: tell CMake, pkg-config and Python where it is (README: "another prefix").
 export CMAKE_PREFIX_PATH=$prefix PKG_CONFIG_PATH=$prefix/lib/pkgconfig
-python_dir=$(find "$prefix/lib" -type d -name dist-packages | head -n 1)
-export PYTHONPATH=$python_dir
-export PATH="$(dirname "$python"):$PATH"  # python3 is the interpreter the module was built for
 cd "$root"
-echo "== import partreg from $python_dir"
-python3 -c "import partreg; print('partreg', partreg.__version__, 'from', partreg.__file__)"
+if [ "$python" != none ]; then
+  python_dir=$(find "$prefix/lib" -type d -name dist-packages | head -n 1)
+  export PYTHONPATH=$python_dir
+  export PATH="$(dirname "$python"):$PATH"  # python3 is the interpreter the module was built for
+  echo "== import partreg from $python_dir"
+  python3 -c "import partreg; print('partreg', partreg.__version__, 'from', partreg.__file__)"
+fi
 
 if [ ! -d "$data_dir/mugs" ]; then
   echo "== building the consumer only: shared data absent ($data_dir)"
@@ -62,5 +64,7 @@ fi
 cp "$model" mugs.prm
 echo "== README: Use it from CMake"
 bash -euxo pipefail "$scratch/cmake_commands.sh"
-echo "== README: Use it from Python"
-bash -euxo pipefail "$scratch/python_commands.sh"
+if [ "$python" != none ]; then
+  echo "== README: Use it from Python"
+  bash -euxo pipefail "$scratch/python_commands.sh"
+fi

@@ -12,7 +12,8 @@ mug=$data_dir/mugs/5c48d471200d2bf16e8a121e6886e18d.obj
   --out "$out/mugs.prm" --points 500 --samples 2000 --json "$out/train.json" 2>"$out/train.log"
 "$partreg" register "$out/mugs.prm" "$mug" --variant hol+part --json "$out/register.json" \
   --points-out "$out/register_points.ply" --mesh-out "$out/register_mesh.ply" \
-  --frames "$source_dir/assets/frames/mug_handle_grasp.json" --frames-out "$out/register_frames.json" 2>"$out/register.log"
+  --frames "$source_dir/assets/frames/mug_handle_grasp.json" --frames-out "$out/register_frames.json" \
+  --truth "$data_dir/mugs/1a97f3c83016abca21d0de04f408950f.obj" 2>"$out/register.log"
 "$partreg" cpd "$data_dir/drills/drill_1.pcd" "$data_dir/drills/drill_2.pcd" --mode rigid --out "$out/cpd_rigid.ply" \
   --json "$out/cpd_rigid.json" 2>"$out/cpd_rigid.log"
 "$partreg" cpd "$data_dir/drills/drill_1.pcd" "$data_dir/drills/drill_2.pcd" --mode nonrigid --out "$out/cpd_nonrigid.ply" \

@@ -187,11 +187,27 @@ def test_measure_errors_known_answer(partreg):
     truth = deformed + np.array([0.0, 0.1, 0.0])
     figures = partreg.measure_errors(deformed, np.zeros(10, dtype=np.int32), ["whole"], truth, 2.0)
     assert figures["eq5"] == pytest.approx(0.01, rel=1e-12)
-    assert figures["eq5_normalised"] == pytest.approx(0.01 / 4.0, rel=1e-12)
+    assert figures["reverse_eq5"] == pytest.approx(0.01, rel=1e-12)
+    assert figures["eq5_per_diagonal2"] == pytest.approx(0.01 / 4.0, rel=1e-12)
     assert figures["chamfer"] == pytest.approx(0.1, rel=1e-12)
-    assert figures["chamfer_normalised"] == pytest.approx(0.05, rel=1e-12)
-    assert figures["part_eq5_normalised"]["whole"] == pytest.approx(0.0025, rel=1e-12)
+    assert figures["chamfer_per_diagonal"] == pytest.approx(0.05, rel=1e-12)
+    assert figures["symmetric_rms_per_diagonal"] == pytest.approx(0.05, rel=1e-12)
+    assert figures["part_eq5_per_diagonal2"]["whole"] == pytest.approx(0.0025, rel=1e-12)
+    # Without a diagonal: the truth's own bounding-box diagonal (9 along x, 0 across).
+    assert partreg.measure_errors(deformed, np.zeros(10, dtype=np.int32), ["whole"], truth)["diagonal"] == pytest.approx(9.0)
     assert partreg.measure_errors(deformed, np.zeros(10, dtype=np.int32), ["whole"], deformed, 2.0)["eq5"] == 0.0
+
+
+def test_measure_errors_equals_the_command_line(partreg, model, registered, cli_register, data_dir):
+    # `register --truth` reads the true mug as 20000 surface samples with seed 2.
+    truth = partreg.read_cloud(data_dir / "mugs" / "1a97f3c83016abca21d0de04f408950f.obj", mesh_samples=20000, seed=2)
+    figures = partreg.measure_errors(registered.deformed, registered.part, model.part_names, truth)
+    expected = cli_register["truth"]
+    for name in ("diagonal", "eq5", "eq5_per_diagonal2", "reverse_eq5", "symmetric_rms_per_diagonal", "chamfer",
+                 "chamfer_per_diagonal"):
+        assert figures[name] == pytest.approx(expected[name], rel=EXACT), name
+    for part, value in expected["part_eq5_per_diagonal2"].items():
+        assert figures["part_eq5_per_diagonal2"][part] == pytest.approx(value, rel=EXACT)
 
 
 def test_files_round_trip(partreg, model, registered, tmp_path):
@@ -226,10 +242,34 @@ def test_train_equals_the_command_line(partreg, model, data_dir, source_dir):
         assert np.allclose(mine.training_latents, cli.training_latents, rtol=0, atol=EXACT)
 
 
-def test_registration_defaults_are_the_command_lines(partreg):
+def test_registration_keywords_are_the_command_lines(partreg, model, observed_mug, cli_register):
+    # The keywords come from the one table of registration options: the same names ('-' as '_'), the same
+    # defaults as the settings the CLI recorded in its result (hol+part aside, as it was asked for).
     defaults = partreg.registration_defaults()
-    assert defaults["variant"] == "holistic" and defaults["restarts"] == 1
-    assert all("-" not in name for name in defaults)
+    options = partreg.registration_options()
+    assert [option["keyword"] for option in options] == list(defaults)
+    assert all(option["option"] == "--" + option["keyword"].replace("_", "-") for option in options)
+    recorded = cli_register["settings"]
+    assert sorted(name.replace("-", "_") for name in recorded) == sorted(defaults)
+    for name, text in recorded.items():
+        keyword = name.replace("-", "_")
+        if keyword == "variant":
+            continue
+        value = defaults[keyword]
+        if isinstance(value, bool):
+            assert text == ("true" if value else "false"), keyword
+        elif isinstance(value, (int, float)):
+            assert float(text) == value, keyword
+        elif value is None:
+            assert text == "none", keyword
+        elif isinstance(value, str):
+            assert text == value, keyword
+        else:
+            assert np.allclose([float(v) for v in text.split(",")], value), keyword
+    # A keyword reaches the registration: one outer step and no more.
+    short = partreg.register(model, partreg.read_cloud(observed_mug), iterations=1)
+    assert all(fit.iterations <= 1 for fit in short.fits)
+    assert short.fits[0].stop_reason in ("converged", "max_iterations", "no_pairs")
 
 
 # --- bad input: the documented exception, with the library's message --------------------------------------
@@ -285,8 +325,10 @@ def test_model_of_another_format_version_raises_input_error(partreg, cli_dir, tm
 def test_unknown_setting_raises_usage_error(partreg, model, observed_mug):
     with pytest.raises(partreg.UsageError, match="no_such_setting"):
         partreg.register(model, partreg.read_cloud(observed_mug), no_such_setting=1)
-    with pytest.raises(partreg.UsageError, match="variant"):
+    with pytest.raises(partreg.UsageError, match="unknown variant 'elastic'"):
         partreg.register(model, partreg.read_cloud(observed_mug), variant="elastic")
+    with pytest.raises(partreg.UsageError, match="restarts must be in"):
+        partreg.register(model, partreg.read_cloud(observed_mug), restarts=0)
 
 
 def test_registration_releases_the_interpreter_lock(partreg, model, observed_mug):
