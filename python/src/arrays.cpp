@@ -16,13 +16,21 @@ std::string shape_text(const py::array& array) {
   return text.str();
 }
 
+// True for an array whose elements are T in this machine's byte order (numpy's own equivalence test: a dtype
+// object may be any instance, an unpickled array's for example).
+template <typename T>
+bool holds(const py::handle& object) {
+  return py::isinstance<py::array_t<T>>(object);
+}
+
 // The checks every input array gets, in the order a user would fix them.
-py::array checked_array(const py::handle& object, const std::string& what, const py::dtype& dtype,
-                        const std::string& dtype_name, int ndim, long columns) {
+template <typename T>
+py::array checked_array(const py::handle& object, const std::string& what, const std::string& dtype_name, int ndim,
+                        long columns) {
   if (!py::isinstance<py::array>(object))
     throw UsageError(what + " must be a numpy array, not " + std::string(py::str(object.get_type().attr("__name__"))));
   const py::array array = py::reinterpret_borrow<py::array>(object);
-  if (!array.dtype().is(dtype))
+  if (!holds<T>(array))
     throw UsageError(what + " must be " + dtype_name + ", not " + std::string(py::str(array.dtype())) +
                      ": convert it with numpy.asarray(x, dtype=numpy." + dtype_name + ")");
   const bool shape_ok = array.ndim() == ndim && (ndim == 1 || array.shape(1) == columns);
@@ -51,39 +59,36 @@ py::array read_only(py::array array) { return with_access(std::move(array), Acce
 }  // namespace
 
 core::Points to_points(const py::handle& object, const std::string& what) {
-  const py::array array = checked_array(object, what, py::dtype::of<double>(), "float64", 2, 3);
+  const py::array array = checked_array<double>(object, what, "float64", 2, 3);
   core::Points points(array.shape(0), 3);
   if (points.size() > 0) std::memcpy(points.data(), array.data(), sizeof(double) * points.size());
   return points;
 }
 
 Eigen::VectorXi to_indices(const py::handle& object, const std::string& what) {
-  if (py::isinstance<py::array>(object) &&
-      py::reinterpret_borrow<py::array>(object).dtype().is(py::dtype::of<std::int64_t>())) {
-    const py::array array = checked_array(object, what, py::dtype::of<std::int64_t>(), "int64", 1, 1);
+  if (holds<std::int64_t>(object)) {
+    const py::array array = checked_array<std::int64_t>(object, what, "int64", 1, 1);
     const auto* data = static_cast<const std::int64_t*>(array.data());
     Eigen::VectorXi values(array.shape(0));
     for (Eigen::Index i = 0; i < values.size(); ++i) values[i] = static_cast<int>(data[i]);
     return values;
   }
-  const py::array array = checked_array(object, what, py::dtype::of<std::int32_t>(), "int32", 1, 1);
+  const py::array array = checked_array<std::int32_t>(object, what, "int32", 1, 1);
   return Eigen::Map<const Eigen::VectorXi>(static_cast<const int*>(array.data()), array.shape(0));
 }
 
 core::Faces to_faces(const py::handle& object, const std::string& what) {
-  const bool wide = py::isinstance<py::array>(object) &&
-                    py::reinterpret_borrow<py::array>(object).dtype().is(py::dtype::of<std::int64_t>());
-  if (wide) {
-    const py::array array = checked_array(object, what, py::dtype::of<std::int64_t>(), "int64", 2, 3);
+  if (holds<std::int64_t>(object)) {
+    const py::array array = checked_array<std::int64_t>(object, what, "int64", 2, 3);
     using Wide = Eigen::Matrix<std::int64_t, Eigen::Dynamic, 3, Eigen::RowMajor>;
     return Eigen::Map<const Wide>(static_cast<const std::int64_t*>(array.data()), array.shape(0), 3).cast<int>();
   }
-  const py::array array = checked_array(object, what, py::dtype::of<std::int32_t>(), "int32", 2, 3);
+  const py::array array = checked_array<std::int32_t>(object, what, "int32", 2, 3);
   return Eigen::Map<const core::Faces>(static_cast<const int*>(array.data()), array.shape(0), 3);
 }
 
 Eigen::VectorXd to_vector(const py::handle& object, const std::string& what) {
-  const py::array array = checked_array(object, what, py::dtype::of<double>(), "float64", 1, 1);
+  const py::array array = checked_array<double>(object, what, "float64", 1, 1);
   return Eigen::Map<const Eigen::VectorXd>(static_cast<const double*>(array.data()), array.shape(0));
 }
 
@@ -92,7 +97,7 @@ Eigen::MatrixXd to_matrix(const py::handle& object, long rows, long cols, const 
     throw UsageError(what + " must be a numpy array of shape (" + std::to_string(rows) + ", " +
                      std::to_string(cols) + ")");
   const py::array array = py::reinterpret_borrow<py::array>(object);
-  if (!array.dtype().is(py::dtype::of<double>()))
+  if (!holds<double>(array))
     throw UsageError(what + " must be float64, not " + std::string(py::str(array.dtype())));
   const bool is_vector = cols == 1 && array.ndim() == 1 && array.shape(0) == rows;
   const bool is_matrix = array.ndim() == 2 && array.shape(0) == rows && array.shape(1) == cols;

@@ -8,6 +8,7 @@
 #include "bindings.hpp"
 #include "partreg/core/deformation.hpp"
 #include "partreg/core/errors.hpp"
+#include "partreg/core/parallel.hpp"
 #include "partreg/core/training.hpp"
 #include "partreg/core/truth_errors.hpp"
 #include "partreg/eval/views.hpp"
@@ -26,6 +27,12 @@ using Path = std::filesystem::path;
 using Release = py::call_guard<py::gil_scoped_release>;
 using ModelPtr = std::shared_ptr<core::CategoryModel>;
 using ResultPtr = std::shared_ptr<core::RegistrationResult>;
+
+// `threads` as the command line's --threads: all threads counted, 0 = all cores.
+int thread_count(int threads) {
+  if (threads < 0) throw UsageError("threads must be 0 (all cores) or more, not " + std::to_string(threads));
+  return threads;
+}
 
 void bind_files(py::module_& m) {
   m.def("read_model", [](const Path& path) { return std::make_shared<core::CategoryModel>(io::read_model(path)); },
@@ -74,7 +81,8 @@ void bind_training(py::module_& m) {
   const io::DatasetOptions dataset;
   m.def("train",
         [](const Path& folder, std::optional<Path> labels, std::optional<std::string> canonical, int latent,
-           int points, int samples, double beta, double lambda, std::uint64_t seed) {
+           int points, int samples, double beta, double lambda, std::uint64_t seed, int threads) {
+          const core::ThreadBudget budget(thread_count(threads));
           if (latent < 1) throw UsageError("latent must be at least 1");
           if (points < 10) throw UsageError("points must be at least 10");
           core::TrainingSettings settings;
@@ -93,9 +101,10 @@ void bind_training(py::module_& m) {
         py::arg("canonical") = py::none(), py::arg("latent") = training.latent_dimensions,
         py::arg("points") = training.canonical_points, py::arg("samples") = dataset.points_per_instance,
         py::arg("beta") = training.beta, py::arg("lambda_") = training.lambda, py::arg("seed") = dataset.seed,
+        py::arg("threads") = 0,
         "Trains a category from a folder of pose-aligned instances, as `partreg train` with the same options "
         "(lambda_ is --lambda). labels: a labels file giving the canonical its parts. beta in normalised units "
-        "(canonical diagonal 1).");
+        "(canonical diagonal 1). threads: as --threads, all counted, 0 = all cores.");
 }
 
 void bind_registration(py::module_& m) {
@@ -105,16 +114,19 @@ void bind_registration(py::module_& m) {
       "Keyword arguments are the registration options of `partreg register` ('-' as '_', same defaults): a bool "
       "for a flag, a number, a name, or 3 numbers (viewpoint, up; None for no viewpoint). InputError for fewer "
       "than 10 finite points, NaN points or an observation wildly out of scale; UsageError for a bad setting or "
-      "a part-based variant on a model without parts.\n\nKeywords (default, help):" +
+      "a part-based variant on a model without parts. threads: as --threads, all counted, 0 = all cores."
+      "\n\nKeywords (default, help):" +
       registration_keywords_doc();
   m.def("register",
-        [](const ModelPtr& model, py::handle points, const py::kwargs& keywords) {
+        [](const ModelPtr& model, py::handle points, int threads, const py::kwargs& keywords) {
           const core::RegistrationSettings settings = registration_settings(keywords);
           const core::Points observed = to_points(points, "points");
           py::gil_scoped_release release;
+          const core::ThreadBudget budget(thread_count(threads));
           return std::make_shared<core::RegistrationResult>(core::register_observation(*model, observed, settings));
         },
-        py::arg("model").none(false), py::arg("points"), register_doc.c_str());  // pybind11 copies the text
+        py::arg("model").none(false), py::arg("points"), py::kw_only(), py::arg("threads") = 0,
+        register_doc.c_str());  // pybind11 copies the text
   m.def("registration_defaults", &registration_defaults,
         "Every registration keyword of register() with its default (the command line's).");
   m.def("registration_options", &registration_options,
@@ -201,12 +213,13 @@ void bind_evaluation(py::module_& m) {
   m.def("sphere_directions", &eval::sphere_directions, py::arg("count") = 42,
         "count unit directions from an icosphere (12, 42, 162, ...); UsageError for another count.");
   m.def("views",
-        [](py::handle geometry, int count, int width, int height, double fov_degrees, double margin) {
+        [](py::handle geometry, int count, int width, int height, double fov_degrees, double margin, int threads) {
           const eval::CameraSettings camera{width, height, fov_degrees, margin};
           const bool is_mesh = py::isinstance<core::Mesh>(geometry);
           const core::Mesh mesh = is_mesh ? geometry.cast<core::Mesh>() : core::Mesh{};
           const core::Points cloud = is_mesh ? core::Points() : to_points(geometry, "geometry");
           py::gil_scoped_release release;
+          const core::ThreadBudget budget(thread_count(threads));
           const eval::ViewCaster caster = is_mesh ? eval::ViewCaster(mesh) : eval::ViewCaster(cloud);
           std::vector<std::shared_ptr<eval::View>> views;
           for (const Eigen::Vector3d& direction : eval::sphere_directions(count))
@@ -215,7 +228,7 @@ void bind_evaluation(py::module_& m) {
         },
         py::arg("geometry"), py::arg("count") = 42, py::arg("width") = eval::CameraSettings{}.width,
         py::arg("height") = eval::CameraSettings{}.height, py::arg("fov_degrees") = eval::CameraSettings{}.fov_degrees,
-        py::arg("margin") = eval::CameraSettings{}.margin,
+        py::arg("margin") = eval::CameraSettings{}.margin, py::arg("threads") = 0,
         "Partial views of a Mesh or a cloud (N, 3) as `partreg views` casts them: a depth camera (width x height "
         "pixels, vertical field of view in degrees) at each of count icosphere directions; object frame and units.");
   m.def("measure_errors",

@@ -287,6 +287,15 @@ def test_float32_raises_usage_error(partreg, model):
         partreg.register(model, points)
 
 
+def test_an_unpickled_array_is_taken_and_a_byte_swapped_one_refused(partreg, model, observed_mug):
+    import pickle
+    points = partreg.read_cloud(observed_mug)
+    unpickled = pickle.loads(pickle.dumps(points))  # float64, but another dtype object
+    assert partreg.register(model, unpickled, iterations=1).deformed.shape == model.canonical.shape
+    with pytest.raises(partreg.UsageError, match="must be float64, not >f8"):
+        partreg.register(model, points.astype(">f8"))
+
+
 def test_non_contiguous_raises_usage_error(partreg, model):
     points = np.random.default_rng(1).random((100, 3))
     with pytest.raises(partreg.UsageError, match="not C-contiguous"):
@@ -327,6 +336,8 @@ def test_unknown_setting_raises_usage_error(partreg, model, observed_mug):
         partreg.register(model, partreg.read_cloud(observed_mug), no_such_setting=1)
     with pytest.raises(partreg.UsageError, match="unknown variant 'elastic'"):
         partreg.register(model, partreg.read_cloud(observed_mug), variant="elastic")
+    with pytest.raises(partreg.UsageError, match="threads must be 0"):
+        partreg.register(model, partreg.read_cloud(observed_mug), threads=-1)
     with pytest.raises(partreg.UsageError, match="restarts must be in"):
         partreg.register(model, partreg.read_cloud(observed_mug), restarts=0)
 
