@@ -1,6 +1,6 @@
-# partreg_core must stay a registration library: Eigen, Ceres, nanoflann (and header-only Spectra).
+# partreg_core must stay a registration library: Eigen, Ceres and nanoflann.
 # This check fails the configure step when anything GUI-, rendering- or file-format-related leaks
-# into its link interface, so the layering in DESIGN.md cannot erode silently.
+# into its link interface, so the layering (core below io, eval, ui and app) cannot erode silently.
 function(partreg_check_core_dependencies target)
   set(forbidden "GL|glfw|OSMesa|imgui|vtk|VTK|pcl|PCL|assimp|cairo|embree")
   foreach(property LINK_LIBRARIES INTERFACE_LINK_LIBRARIES)

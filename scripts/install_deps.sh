@@ -3,7 +3,7 @@
 set -euo pipefail
 packages=(
   build-essential cmake ninja-build pkg-config
-  libeigen3-dev libceres-dev libnanoflann-dev libspectra-dev
+  libeigen3-dev libceres-dev libnanoflann-dev
   libpcl-dev libassimp-dev
   libcli11-dev libspdlog-dev nlohmann-json3-dev
   libgtest-dev libgmock-dev libbenchmark-dev

@@ -25,7 +25,9 @@ int main(int argc, char** argv) {
   partreg::app::add_synth_command(app);
   partreg::app::add_label_command(app);
   partreg::app::add_register_command(app);
+#ifdef PARTREG_WITH_RENDER  // built with ui/ (PARTREG_BUILD_UI=ON)
   partreg::app::add_render_commands(app);
+#endif
   partreg::app::add_views_command(app);
   partreg::app::add_eval_command(app);
 

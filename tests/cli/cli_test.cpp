@@ -151,6 +151,11 @@ TEST_F(Cli, RegisterWritesItsOutputsAndRefusesBadInput) {
   const std::string out = " --points-out " + path("out.ply");
   const std::vector<std::pair<std::string, int>> cases = {
       {"register " + path("mug.prm") + " " + path("few.xyz") + out, 1},
+      {"register " + path("mug.prm") + " " + observed + " --restarts 0" + out, 2},
+      {"register " + path("mug.prm") + " " + observed + " --max-tilt 3.5" + out, 2},
+      {"register " + path("mug.prm") + " " + observed + " --max-tilt -0.1" + out, 2},
+      {"register " + path("mug.prm") + " " + observed + " --up 0,0,0" + out, 2},
+      {"register " + path("mug.prm") + " " + observed + " --viewpoint nan,0,0" + out, 2},
       {"register " + path("mug.prm") + " " + path("nan.xyz") + out, 1},
       {"register " + path("mug.prm") + " " + path("huge.xyz") + out, 1},
       {"register " + path("v2.prm") + " " + observed + out, 1},
@@ -178,6 +183,13 @@ TEST_F(Cli, LabelAssignsFacesAndRefusesAnEmptySelection) {
                 .exit_code,
             2);
   EXPECT_EQ(run("label " + mesh + " --part lid --sphere 0,0,0,-1 --out " + path("neg.json")).exit_code, 2);
+  // The library names the value, the command adds the flag that carried it.
+  const Outcome zero_normal =
+      run("label " + mesh + " --part lid --plane 0,0,0,0,0,0 --out " + path("z.json"));
+  EXPECT_EQ(zero_normal.exit_code, 2);
+  EXPECT_NE(zero_normal.output.find("partreg: --plane: the plane's normal 0,0,0 has zero length"),
+            std::string::npos)
+      << zero_normal.output;
   EXPECT_FALSE(std::filesystem::exists(dir / "none.json"));
 }
 

@@ -15,7 +15,7 @@ void add_info_command(CLI::App& app);
 void add_synth_command(CLI::App& app);
 void add_register_command(CLI::App& app);
 void add_label_command(CLI::App& app);
-void add_render_commands(CLI::App& app);  ///< `render` and `figure` (headless OSMesa)
+void add_render_commands(CLI::App& app);  ///< `render` and `figure` (headless OSMesa); only with ui/
 void add_views_command(CLI::App& app);
 void add_eval_command(CLI::App& app);
 

@@ -158,7 +158,12 @@ void run_eval(EvalOptions& options) {
   const core::ThreadBudget budget(options.settings.threads);  // training; registrations run in the arena
   StagedFolder folder(options.out_path);  // refuses a folder holding other files before any work
   const eval::EvalInput input = load_input(options);
-  eval::tested_instances(input, options.settings);  // fails early on too few instances
+  try {
+    eval::tested_instances(input, options.settings);  // fails early on too few instances
+  } catch (const UsageError& error) {
+    // Its only usage check the command line has not made already (--shard) is the fold count.
+    throw UsageError(std::string("--folds: ") + error.what());
+  }
   const auto start = Clock::now();
   ProgressBar progress;
   const std::vector<eval::EvalRow> rows = eval::run_evaluation(input, options.settings, std::ref(progress));

@@ -23,9 +23,17 @@ struct LabelOptions {
 core::PartSelector selector_of(const LabelOptions& options) {
   const int given = !options.box.empty() + !options.plane.empty() + !options.sphere.empty();
   if (given != 1) throw UsageError("give exactly one of --box, --plane and --sphere");
-  if (!options.box.empty()) return core::parse_box(options.box);
-  if (!options.plane.empty()) return core::parse_plane(options.plane);
-  return core::parse_sphere(options.sphere);
+  // The library names the value; only the command line knows which flag carried it.
+  const auto parse_flag = [](const std::string& flag, auto parse, const std::string& text) {
+    try {
+      return parse(text);
+    } catch (const UsageError& error) {
+      throw UsageError(flag + ": " + error.what());
+    }
+  };
+  if (!options.box.empty()) return parse_flag("--box", core::parse_box, options.box);
+  if (!options.plane.empty()) return parse_flag("--plane", core::parse_plane, options.plane);
+  return parse_flag("--sphere", core::parse_sphere, options.sphere);
 }
 
 io::PartLabels starting_labels(const LabelOptions& options, const core::Mesh& mesh) {

@@ -1,4 +1,5 @@
 // `partreg register MODEL OBSERVED`: deform a category model onto an observed cloud or mesh.
+#include <algorithm>
 #include <iostream>
 #include <memory>
 #include <sstream>

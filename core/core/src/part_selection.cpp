@@ -1,5 +1,6 @@
 #include "partreg/core/part_selection.hpp"
 
+#include <cmath>
 #include <sstream>
 
 #include "partreg/core/errors.hpp"
@@ -12,11 +13,13 @@ std::vector<double> parse_numbers(const std::string& text, std::size_t count, co
   while (std::getline(in, item, ',')) {
     char* end = nullptr;
     values.push_back(std::strtod(item.c_str(), &end));
-    if (item.empty() || *end != '\0') throw UsageError(what + ": '" + item + "' is not a number");
+    // strtod reads "nan" and "inf" too: no selector, camera or viewpoint means anything with them.
+    if (item.empty() || *end != '\0' || !std::isfinite(values.back()))
+      throw UsageError(what + ": '" + item + "' in '" + text + "' is not a finite number");
   }
   if (values.size() != count)
-    throw UsageError(what + " takes " + std::to_string(count) + " comma-separated numbers, got " +
-                     std::to_string(values.size()));
+    throw UsageError(what + " needs " + std::to_string(count) + " comma-separated numbers; '" + text +
+                     "' has " + std::to_string(values.size()));
   return values;
 }
 
@@ -26,6 +29,13 @@ Eigen::Vector3d parse_vector3(const std::string& text, const std::string& what) 
 }
 
 namespace {
+
+/// "x,y,z" as the user would type it, for messages.
+std::string comma_separated(const Eigen::Vector3d& v) {
+  std::ostringstream out;
+  out << v.x() << ',' << v.y() << ',' << v.z();
+  return out.str();
+}
 
 bool contains(const PartSelector& selector, const Eigen::Vector3d& p) {
   if (const auto* box = std::get_if<BoxSelector>(&selector))
@@ -39,21 +49,27 @@ bool contains(const PartSelector& selector, const Eigen::Vector3d& p) {
 }  // namespace
 
 PartSelector parse_box(const std::string& text) {
-  const auto v = parse_numbers(text, 6, "--box");
+  const auto v = parse_numbers(text, 6, "the box x0,y0,z0,x1,y1,z1");
   const Eigen::Vector3d a(v[0], v[1], v[2]), b(v[3], v[4], v[5]);
   return BoxSelector{a.cwiseMin(b), a.cwiseMax(b)};
 }
 
 PartSelector parse_plane(const std::string& text) {
-  const auto v = parse_numbers(text, 6, "--plane");
+  const auto v = parse_numbers(text, 6, "the plane px,py,pz,nx,ny,nz");
   const Eigen::Vector3d normal(v[3], v[4], v[5]);
-  if (normal.norm() == 0.0) throw UsageError("--plane needs a non-zero normal");
+  if (normal.norm() == 0.0)
+    throw UsageError("the plane's normal " + comma_separated(normal) +
+                     " has zero length: it selects no side");
   return PlaneSelector{Eigen::Vector3d(v[0], v[1], v[2]), normal.normalized()};
 }
 
 PartSelector parse_sphere(const std::string& text) {
-  const auto v = parse_numbers(text, 4, "--sphere");
-  if (!(v[3] > 0.0)) throw UsageError("--sphere needs a positive radius");
+  const auto v = parse_numbers(text, 4, "the sphere cx,cy,cz,r");
+  if (!(v[3] > 0.0)) {
+    std::ostringstream radius;
+    radius << v[3];
+    throw UsageError("the sphere's radius " + radius.str() + " is not positive");
+  }
   return SphereSelector{Eigen::Vector3d(v[0], v[1], v[2]), v[3]};
 }
 

@@ -10,6 +10,7 @@
 #include "partreg/core/parallel.hpp"
 #include "partreg/core/registration_options.hpp"
 #include "partreg/core/sampling.hpp"
+#include "pose_search.hpp"
 #include "space_solver.hpp"
 
 namespace partreg::core {
@@ -67,62 +68,6 @@ Points canonical_normals(const Points& points) {
   return normals;
 }
 
-// Initial poses: the category's frame turned about its up axis, centroids aligned.
-// Principal axes of a point set as the columns of a rotation, by decreasing spread.
-Eigen::Matrix3d principal_axes(const Points& points) {
-  const Points centred = points.rowwise() - points.colwise().mean();
-  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eigen(centred.transpose() * centred);
-  Eigen::Matrix3d axes = eigen.eigenvectors().rowwise().reverse();
-  if (axes.determinant() < 0.0) axes.col(2) = -axes.col(2);
-  return axes;
-}
-
-// Starting rotations: the category frame, or, with principal-axis alignment, the four proper rotations that
-// map the canonical's axes onto the observation's (the axes' signs are unknown).
-std::vector<Eigen::Matrix3d> base_rotations(const CategoryModel& model, const Observation& observation,
-                                            const RegistrationSettings& settings) {
-  if (!settings.initialisation.align_principal_axes) return {Eigen::Matrix3d::Identity()};
-  const Eigen::Matrix3d canonical = principal_axes(model.canonical),
-                        observed = principal_axes(observation.points);
-  std::vector<Eigen::Matrix3d> rotations;
-  for (const Eigen::Vector3d& signs : {Eigen::Vector3d(1, 1, 1), Eigen::Vector3d(-1, -1, 1),
-                                       Eigen::Vector3d(-1, 1, -1), Eigen::Vector3d(1, -1, -1)})
-    rotations.push_back(observed * signs.asDiagonal() * canonical.transpose());
-  return rotations;
-}
-
-// Initial poses: each base rotation, turned about the category's up axis `restarts` times, centroids aligned.
-std::vector<Pose> initial_poses(const CategoryModel& model, const Observation& observation,
-                                const RegistrationSettings& settings) {
-  const ShapeSpace& holistic = model.holistic();
-  const Eigen::Vector3d canonical_centre =
-      holistic.deformed(Eigen::VectorXd::Zero(holistic.dimensions())).colwise().mean().transpose();
-  std::vector<Pose> poses;
-  const int restarts = std::max(1, settings.initialisation.restarts);
-  for (const Eigen::Matrix3d& base : base_rotations(model, observation, settings)) {
-    for (int k = 0; k < restarts; ++k) {
-      Pose pose;
-      pose.rotation = Eigen::Quaterniond(
-          base * Eigen::AngleAxisd(2.0 * M_PI * k / restarts, settings.initialisation.up.normalized()));
-      pose.translation = -(pose.rotation * canonical_centre);
-      poses.push_back(pose);
-    }
-  }
-  return poses;
-}
-
-SpaceSolution best_of(const ShapeSpace& space, const Points& normals, const Observation& observation,
-                      const std::vector<Pose>& poses, const Eigen::VectorXd& latent,
-                      const RegistrationSettings& settings) {
-  SpaceSolution best;
-  best.cost = std::numeric_limits<double>::infinity();
-  for (const Pose& pose : poses) {
-    SpaceSolution candidate = detail::solve_space(space, normals, observation, latent, pose, settings);
-    if (candidate.cost < best.cost) best = std::move(candidate);
-  }
-  return best;
-}
-
 Eigen::Matrix4d to_data_frame(const Pose& pose, const CategoryModel& model, const Eigen::Vector3d& centroid) {
   const double S = model.normalization.scale;
   const Eigen::Matrix3d sR = pose.scale * pose.rotation.toRotationMatrix();
@@ -132,8 +77,9 @@ Eigen::Matrix4d to_data_frame(const Pose& pose, const CategoryModel& model, cons
   return T;
 }
 
-void record(RegistrationResult& result, const std::string& name, const SpaceSolution& solution,
+void record(RegistrationResult& result, const std::string& name, const detail::SearchOutcome& search,
             const CategoryModel& model, const Eigen::Vector3d& centroid) {
+  const SpaceSolution& solution = search.best;
   const StopReason stop = !solution.had_pairs  ? StopReason::no_pairs
                           : solution.converged ? StopReason::converged
                                                : StopReason::max_iterations;
@@ -202,17 +148,21 @@ RegistrationResult register_observation(const CategoryModel& model, const Points
   Eigen::Vector3d centroid;
   const Observation observation = prepare_observation(model, observed, settings, centroid);
   const Points normals = settings.viewpoint ? canonical_normals(model.canonical) : Points();
-  const std::vector<Pose> poses = initial_poses(model, observation, settings);
+  const ShapeSpace& holistic = model.holistic();
+  // Every space starts with the whole object's centroid on the observation's: a part keeps its place.
+  const Eigen::Vector3d centre =
+      holistic.deformed(Eigen::VectorXd::Zero(holistic.dimensions())).colwise().mean().transpose();
+  const std::vector<Pose> poses = detail::starting_poses(centre, model.canonical, observation, settings);
 
   RegistrationResult result;
   result.variant = settings.variant;
   Points deformed_normalised(model.canonical.rows(), 3);
-  const ShapeSpace& holistic = model.holistic();
   SpaceSolution whole;
   if (settings.variant != Variant::partwise) {
-    whole = best_of(holistic, normals, observation, poses, Eigen::VectorXd::Zero(holistic.dimensions()),
-                    settings);
-    record(result, holistic.name, whole, model, centroid);
+    const detail::SearchOutcome search = detail::search_poses(
+        holistic, normals, observation, poses, Eigen::VectorXd::Zero(holistic.dimensions()), settings);
+    record(result, holistic.name, search, model, centroid);
+    whole = search.best;
     deformed_normalised = whole.pose.apply(holistic.deformed(whole.latent));
   }
   if (settings.variant != Variant::holistic) {
@@ -228,7 +178,7 @@ RegistrationResult register_observation(const CategoryModel& model, const Points
     else
       part_settings.objective.direction = Direction::canonical_to_observed;
     // Parts are independent given their initialisation: solve them in parallel, within the thread budget.
-    std::vector<SpaceSolution> parts(model.spaces.size() - 1);
+    std::vector<detail::SearchOutcome> parts(model.spaces.size() - 1);
     parallel_for(
         static_cast<Eigen::Index>(parts.size()),
         [&](Eigen::Index begin, Eigen::Index end) {
@@ -237,8 +187,8 @@ RegistrationResult register_observation(const CategoryModel& model, const Points
             const ShapeSpace& space = model.spaces[p];
             const Points part_normals = normals.rows() ? rows_of(normals, space.point_indices) : Points();
             if (settings.variant == Variant::partwise) {
-              parts[p - 1] = best_of(space, part_normals, observation, poses,
-                                     Eigen::VectorXd::Zero(space.dimensions()), part_settings);
+              parts[p - 1] = detail::search_poses(space, part_normals, observation, poses,
+                                                  Eigen::VectorXd::Zero(space.dimensions()), part_settings);
               continue;
             }
             const Observation& own = part_observations[p].tree ? part_observations[p] : observation;
@@ -247,14 +197,14 @@ RegistrationResult register_observation(const CategoryModel& model, const Points
               own_settings.objective.direction = Direction::canonical_to_observed;
             const Eigen::VectorXd latent =
                 space.project_displacement(rows_of(holistic_displacement, space.point_indices));
-            parts[p - 1] = detail::solve_space(space, part_normals, own, latent, whole.pose, own_settings);
+            parts[p - 1] = detail::search_poses(space, part_normals, own, {whole.pose}, latent, own_settings);
           }
         },
         0, 1);
     for (std::size_t p = 1; p < model.spaces.size(); ++p) {
-      const SpaceSolution& solution = parts[p - 1];
+      const SpaceSolution& solution = parts[p - 1].best;
       const ShapeSpace& space = model.spaces[p];
-      record(result, space.name, solution, model, centroid);
+      record(result, space.name, parts[p - 1], model, centroid);
       const Points posed = solution.pose.apply(space.deformed(solution.latent));
       for (std::size_t i = 0; i < space.point_indices.size(); ++i)
         deformed_normalised.row(space.point_indices[i]) = posed.row(static_cast<Eigen::Index>(i));

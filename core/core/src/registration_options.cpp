@@ -150,7 +150,22 @@ std::vector<RegistrationOption> make_options() {
       flag(
           "align-axes", "also start from the rotations aligning principal axes (poses far off)",
           [](auto& s) -> auto& { return s.initialisation.align_principal_axes; }),
+      real(
+          "max-tilt", "tilts of the up axis tried, up to this (radians)", 0.0, M_PI,
+          [](auto& s) -> auto& { return s.initialisation.max_tilt; }),
+      flag(
+          "any-rotation", "an unknown up axis: starting rotations spread over SO(3)",
+          [](auto& s) -> auto& { return s.initialisation.any_rotation; }),
       up_axis(),
+      whole(
+          "screening-iterations", "outer steps every pose hypothesis gets before the first cut", 1, 1000,
+          [](auto& s) -> auto& { return s.initialisation.screening_iterations; }),
+      whole(
+          "finalists", "pose hypotheses run to convergence", 1, 10000,
+          [](auto& s) -> auto& { return s.initialisation.finalists; }),
+      choice<SelectionScore>(
+          "score", "what picks the winning pose hypothesis",
+          [](auto& s) -> auto& { return s.initialisation.score; }),
       whole(
           "iterations", "correspondence refreshes per space at most", 1, 10000,
           [](auto& s) -> auto& { return s.convergence.outer_iterations; }),

@@ -21,18 +21,6 @@ Points deformed_points(const ShapeSpace& space, const Eigen::VectorXd& latent) {
   return space.deformed(latent);
 }
 
-// Which canonical points face the viewpoint under the current pose (all of them without a viewpoint).
-std::vector<bool> visible_rows(const Points& posed, const Points& normals, const Pose& pose,
-                               const std::optional<Eigen::Vector3d>& viewpoint) {
-  std::vector<bool> visible(static_cast<std::size_t>(posed.rows()), true);
-  if (!viewpoint || normals.rows() != posed.rows()) return visible;
-  const Eigen::Matrix3d R = pose.rotation.toRotationMatrix();
-  for (Eigen::Index m = 0; m < posed.rows(); ++m)
-    visible[static_cast<std::size_t>(m)] =
-        (R * normals.row(m).transpose()).dot(*viewpoint - posed.row(m).transpose()) > 0.0;
-  return visible;
-}
-
 void trim(std::vector<Pair>& pairs, double fraction) {
   if (pairs.size() < 10 || fraction <= 0.0) return;
   const auto keep = static_cast<std::size_t>(static_cast<double>(pairs.size()) * (1.0 - fraction));
@@ -94,6 +82,18 @@ std::vector<WeightedPair> weighted_pairs(const Correspondences& pairs, const Reg
 }
 
 }  // namespace
+
+// Which canonical points face the viewpoint under the current pose (all of them without a viewpoint).
+std::vector<bool> visible_rows(const Points& posed, const Points& normals, const Pose& pose,
+                               const std::optional<Eigen::Vector3d>& viewpoint) {
+  std::vector<bool> visible(static_cast<std::size_t>(posed.rows()), true);
+  if (!viewpoint || normals.rows() != posed.rows()) return visible;
+  const Eigen::Matrix3d R = pose.rotation.toRotationMatrix();
+  for (Eigen::Index m = 0; m < posed.rows(); ++m)
+    visible[static_cast<std::size_t>(m)] =
+        (R * normals.row(m).transpose()).dot(*viewpoint - posed.row(m).transpose()) > 0.0;
+  return visible;
+}
 
 Points Pose::apply(const Points& points) const {
   const Eigen::Matrix3d R = rotation.toRotationMatrix();

@@ -39,6 +39,10 @@ struct SpaceSolution {
   std::vector<double> step_costs, step_seconds;
 };
 
+/// Which rows of `posed` (a space's posed canonical points) face the viewpoint; all of them without one.
+std::vector<bool> visible_rows(const Points& posed, const Points& normals, const Pose& pose,
+                               const std::optional<Eigen::Vector3d>& viewpoint);
+
 /// Fits `space` from the initial latent and pose. `normals` are outward normals of the space's canonical
 /// points (used only with a viewpoint).
 SpaceSolution solve_space(const ShapeSpace& space, const Points& normals, const Observation& observation,

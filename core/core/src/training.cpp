@@ -280,7 +280,8 @@ CategoryModel train_category(const std::string& category, const std::vector<Trai
     const Points canonical_part = select_rows(model.canonical, rows);
     if (canonical_part.rows() < 10)
       throw InputError("part '" + part_names[part] + "' has only " + std::to_string(canonical_part.rows()) +
-                       " of the canonical's points; raise --points or check the labels");
+                       " of the canonical's " + std::to_string(model.canonical.rows()) +
+                       " points (a part space needs 10): keep more canonical points or check the labels");
     std::vector<Points> part_weights;
     for (std::size_t i = 0; i < instances.size(); ++i) {
       if (i == canonical_index) {

@@ -186,9 +186,13 @@ std::vector<std::string> tested_instances(const EvalInput& input, const EvalSett
     throw InputError("category " + input.category + " has " + std::to_string(input.instances.size()) +
                      " instances: leave-one-out needs at least 3 (2 to train on, 1 to test)");
   if (protocol.folds != 0 && (protocol.folds < 2 || protocol.folds > int(input.instances.size())))
-    throw UsageError("--folds must be 0 (leave-one-out) or between 2 and the instance count");
+    throw UsageError("a fold count of " + std::to_string(protocol.folds) + " for " +
+                     std::to_string(input.instances.size()) +
+                     " instances: it must be 0 (leave-one-out) or between 2 and the instance count");
   if (settings.shard_count < 1 || settings.shard < 0 || settings.shard >= settings.shard_count)
-    throw UsageError("shard must be in [0, shard count)");
+    throw UsageError("shard index " + std::to_string(settings.shard) + " with a shard count of " +
+                     std::to_string(settings.shard_count) +
+                     ": the count must be at least 1 and the index in [0, count)");
   std::vector<std::string> candidates;
   for (const core::TrainingInstance& instance : input.instances)
     if (instance.name != input.fixed_canonical) candidates.push_back(instance.name);

@@ -1,5 +1,6 @@
 #include "partreg/io/result_file.hpp"
 
+#include <cmath>
 #include <fstream>
 
 #include "partreg/core/errors.hpp"
@@ -29,6 +30,10 @@ nlohmann::json result_json(const core::RegistrationResult& result, const core::R
          {"cost", fit.cost},
          {"iterations", fit.iterations},
          {"stop_reason", core::enum_name(fit.stop_reason)},
+         {"pose_hypotheses", fit.hypotheses},
+         {"selection_score", fit.score},
+         {"runner_up_score",
+          std::isfinite(fit.runner_up_score) ? nlohmann::json(fit.runner_up_score) : nlohmann::json()},
          {"seconds", fit.seconds}});
   nlohmann::json request = nlohmann::json::object();
   for (const auto& [name, value] : core::registration_option_values(settings)) request[name] = value;

@@ -23,13 +23,15 @@ struct SphereSelector {
 };
 using PartSelector = std::variant<BoxSelector, PlaneSelector, SphereSelector>;
 
-/// `count` comma-separated numbers ("0.1,2,-3"); UsageError naming `what` for a wrong count or a non-number.
+/// `count` comma-separated finite numbers ("0.1,2,-3"); UsageError naming `what` (what the numbers are, or
+/// the flag that carried them) for a wrong count or a non-number.
 std::vector<double> parse_numbers(const std::string& text, std::size_t count, const std::string& what);
 /// Three comma-separated numbers as a point or a direction ("x,y,z").
 Eigen::Vector3d parse_vector3(const std::string& text, const std::string& what);
 
 /// Parses "x0,y0,z0,x1,y1,z1" (box), "px,py,pz,nx,ny,nz" (plane) or "cx,cy,cz,r" (sphere); UsageError on
-/// a wrong count, a non-number, a zero normal or a non-positive radius.
+/// a wrong count, a non-number, a zero normal or a non-positive radius. The message names the value, not a
+/// command-line flag: a command adds its flag's name, and the app's scripts show the message as it is.
 PartSelector parse_box(const std::string& text);
 PartSelector parse_plane(const std::string& text);
 PartSelector parse_sphere(const std::string& text);

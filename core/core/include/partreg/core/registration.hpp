@@ -43,6 +43,9 @@ struct SpaceFit {
   int iterations = 0;
   StopReason stop_reason = StopReason::max_iterations;
   double seconds = 0.0;
+  int hypotheses = 1;            ///< starting poses the search tried
+  double score = 0.0;            ///< the winner's selection score (InitialisationSettings::score)
+  double runner_up_score = 0.0;  ///< the best other finalist's; infinity when there was none
 };
 
 /// The state after one outer step, for stepping through a registration.

@@ -30,6 +30,14 @@ enum class Direction {
 /// The robust loss on each closest-point distance.
 enum class Loss { squared, huber, cauchy, trimmed };
 
+/// How the pose search picks among its finished hypotheses (docs/registration.md has the measurements).
+enum class SelectionScore {
+  cost,       ///< the fit's own final cost (its direction and loss)
+  canonical,  ///< mean robust distance from the visible posed canonical points to the observation
+  observed,   ///< mean robust distance from the observation to the visible posed canonical points
+  symmetric   ///< the mean of both
+};
+
 /// The objective: what a pose and latent are scored by.
 struct ObjectiveSettings {
   Direction direction = Direction::observed_to_canonical;  ///< measured best on partial views
@@ -40,12 +48,21 @@ struct ObjectiveSettings {
   bool estimate_scale = false;  ///< also fit a uniform scale (bounded below by 0.2)
 };
 
-/// Where the search starts: the initial rotations tried (the lowest final cost wins).
+/// Where the search starts and how it prunes: every combination of a base rotation (the category frame, and
+/// with align_principal_axes the 4 principal-axis alignments; or with any_rotation the 24 rotations of the
+/// cube), a tilt of the up axis (none, or 8 up to max_tilt) and a yaw about the up axis (`restarts` evenly
+/// spaced) is a hypothesis. All get screening_iterations outer steps; the better half by `score` goes on with
+/// twice as many, until `finalists` remain, which run to convergence; the lowest score wins.
 struct InitialisationSettings {
+  int restarts = 1;                   ///< yaws about the up axis, evenly spaced over 360 degrees
   bool align_principal_axes = false;  ///< also start from the 4 rotations aligning principal axes
-  int restarts = 1;                   ///< initial rotations about the up axis, evenly spaced over 360 degrees
-  Eigen::Vector3d up =
-      Eigen::Vector3d::UnitY();  ///< the category's up axis (canonical frame, any length > 0)
+  double max_tilt = 0.0;              ///< tilts of the up axis tried, up to this (radians, [0, pi]); 0 = none
+  bool any_rotation = false;          ///< an unknown up axis: base rotations spread over SO(3)
+  /// The category's up axis (canonical frame, any length > 0).
+  Eigen::Vector3d up = Eigen::Vector3d::UnitY();
+  int screening_iterations = 3;                 ///< outer steps every hypothesis gets before the first cut
+  int finalists = 2;                            ///< hypotheses run to convergence
+  SelectionScore score = SelectionScore::cost;  ///< what picks the winner
 };
 
 /// When a space's fit stops.
@@ -86,6 +103,16 @@ struct EnumNames<Direction> {
       {{Direction::canonical_to_observed, "canonical"},
        {Direction::observed_to_canonical, "observed"},
        {Direction::symmetric, "symmetric"}}};
+};
+
+template <>
+struct EnumNames<SelectionScore> {
+  static constexpr const char* what = "selection score";
+  static constexpr std::array<std::pair<SelectionScore, const char*>, 4> table{
+      {{SelectionScore::cost, "cost"},
+       {SelectionScore::canonical, "canonical"},
+       {SelectionScore::observed, "observed"},
+       {SelectionScore::symmetric, "symmetric"}}};
 };
 
 template <>

@@ -1,0 +1,203 @@
+#include "pose_search.hpp"
+
+#include <Eigen/Eigenvalues>
+#include <algorithm>
+#include <limits>
+#include <numeric>
+
+#include "partreg/core/kdtree.hpp"
+#include "partreg/core/parallel.hpp"
+
+namespace partreg::core::detail {
+namespace {
+
+// Principal axes of a point set as the columns of a rotation, by decreasing spread.
+Eigen::Matrix3d principal_axes(const Points& points) {
+  const Points centred = points.rowwise() - points.colwise().mean();
+  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eigen(centred.transpose() * centred);
+  Eigen::Matrix3d axes = eigen.eigenvectors().rowwise().reverse();
+  if (axes.determinant() < 0.0) axes.col(2) = -axes.col(2);
+  return axes;
+}
+
+// The category frame, or with principal-axis alignment the four proper rotations that map the canonical's
+// axes onto the observation's (the axes' signs are unknown) as well.
+std::vector<Eigen::Matrix3d> base_rotations(const Points& canonical, const Observation& observation,
+                                            const InitialisationSettings& init) {
+  std::vector<Eigen::Matrix3d> rotations = {Eigen::Matrix3d::Identity()};
+  if (!init.align_principal_axes) return rotations;
+  const Eigen::Matrix3d from = principal_axes(canonical), to = principal_axes(observation.points);
+  for (const Eigen::Vector3d& signs : {Eigen::Vector3d(1, 1, 1), Eigen::Vector3d(-1, -1, 1),
+                                       Eigen::Vector3d(-1, 1, -1), Eigen::Vector3d(1, -1, -1)})
+    rotations.push_back(to * signs.asDiagonal() * from.transpose());
+  return rotations;
+}
+
+// Tilts of the up axis: none, or rings at half and the whole of max_tilt, four directions each (about the two
+// horizontal axes of the canonical frame, both signs).
+std::vector<Eigen::Matrix3d> tilts(const InitialisationSettings& init) {
+  std::vector<Eigen::Matrix3d> out = {Eigen::Matrix3d::Identity()};
+  if (init.max_tilt <= 0.0) return out;
+  const Eigen::Vector3d up = init.up.normalized();
+  const Eigen::Vector3d a = up.unitOrthogonal(), b = up.cross(a);
+  for (double angle : {0.5 * init.max_tilt, init.max_tilt})
+    for (const Eigen::Vector3d& axis : {a, b, Eigen::Vector3d(-a), Eigen::Vector3d(-b)})
+      out.push_back(Eigen::AngleAxisd(angle, axis).toRotationMatrix());
+  return out;
+}
+
+// Rotations spread over SO(3): the 24 proper rotations of the cube, each turned about the up axis
+// `restarts` times (an unknown up axis).
+std::vector<Eigen::Matrix3d> cube_rotations() {
+  std::vector<Eigen::Matrix3d> out;
+  const Eigen::Matrix3d I = Eigen::Matrix3d::Identity();
+  std::vector<int> order = {0, 1, 2};
+  do {
+    for (int signs = 0; signs < 8; ++signs) {
+      Eigen::Matrix3d R;
+      for (int c = 0; c < 3; ++c) R.col(c) = ((signs >> c) & 1 ? -1.0 : 1.0) * I.col(order[c]);
+      if (R.determinant() > 0.0) out.push_back(R);
+    }
+  } while (std::next_permutation(order.begin(), order.end()));
+  return out;
+}
+
+double trimmed_mean_distance(const Eigen::VectorXd& squared, double cap) {
+  double sum = 0.0;
+  for (Eigen::Index i = 0; i < squared.size(); ++i) sum += std::min(std::sqrt(squared[i]), cap);
+  return squared.size() ? sum / static_cast<double>(squared.size()) : std::numeric_limits<double>::infinity();
+}
+
+// Continues a candidate by `steps` outer iterations, keeping its history.
+void advance(SpaceSolution& candidate, int steps, const ShapeSpace& space, const Points& normals,
+             const Observation& observation, RegistrationSettings settings) {
+  settings.convergence.outer_iterations = steps;
+  SpaceSolution next = solve_space(space, normals, observation, candidate.latent, candidate.pose, settings);
+  const double offset = candidate.seconds;
+  for (double& seconds : next.step_seconds) seconds += offset;
+  next.steps.insert(next.steps.begin(), candidate.steps.begin(), candidate.steps.end());
+  next.step_costs.insert(next.step_costs.begin(), candidate.step_costs.begin(), candidate.step_costs.end());
+  next.step_seconds.insert(next.step_seconds.begin(), candidate.step_seconds.begin(),
+                           candidate.step_seconds.end());
+  next.iterations += candidate.iterations;
+  next.seconds += offset;
+  candidate = std::move(next);
+}
+
+}  // namespace
+
+std::vector<Pose> starting_poses(const Eigen::Vector3d& centre, const Points& canonical,
+                                 const Observation& observation, const RegistrationSettings& settings) {
+  const InitialisationSettings& init = settings.initialisation;
+  const Eigen::Vector3d up = init.up.normalized();
+  std::vector<Eigen::Matrix3d> bases = init.any_rotation ? cube_rotations() : std::vector<Eigen::Matrix3d>{};
+  if (!init.any_rotation)
+    for (const Eigen::Matrix3d& base : base_rotations(canonical, observation, init))
+      for (const Eigen::Matrix3d& tilt : tilts(init)) bases.push_back(base * tilt);
+  std::vector<Pose> poses;
+  for (const Eigen::Matrix3d& base : bases)
+    for (int k = 0; k < init.restarts; ++k) {
+      Pose pose;
+      pose.rotation = Eigen::Quaterniond(base * Eigen::AngleAxisd(2.0 * M_PI * k / init.restarts, up));
+      pose.translation = -(pose.rotation * centre);
+      poses.push_back(pose);
+    }
+  return poses;
+}
+
+double selection_score(const ShapeSpace& space, const Points& normals, const Observation& observation,
+                       const SpaceSolution& solution, const RegistrationSettings& settings) {
+  if (settings.initialisation.score == SelectionScore::cost) return solution.cost;
+  const Points posed = solution.pose.apply(space.deformed(solution.latent));
+  const std::vector<bool> visible = visible_rows(posed, normals, solution.pose, observation.viewpoint);
+  std::vector<int> rows;
+  for (std::size_t m = 0; m < visible.size(); ++m)
+    if (visible[m]) rows.push_back(static_cast<int>(m));
+  if (rows.size() < 3) return std::numeric_limits<double>::infinity();
+  Points seen(static_cast<Eigen::Index>(rows.size()), 3);
+  for (std::size_t i = 0; i < rows.size(); ++i) seen.row(static_cast<Eigen::Index>(i)) = posed.row(rows[i]);
+  const double cap = 4.0 * settings.objective.loss_scale;
+  std::vector<int> index;
+  Eigen::VectorXd to_observed, to_canonical;
+  observation.tree->nearest_all(seen, index, to_observed);
+  KdTree(seen).nearest_all(observation.points, index, to_canonical);
+  const double canonical_side = trimmed_mean_distance(to_observed, cap);
+  const double observed_side = trimmed_mean_distance(to_canonical, cap);
+  switch (settings.initialisation.score) {
+    case SelectionScore::canonical:
+      return canonical_side;
+    case SelectionScore::observed:
+      return observed_side;
+    default:
+      return 0.5 * (canonical_side + observed_side);
+  }
+}
+
+SearchOutcome search_poses(const ShapeSpace& space, const Points& normals, const Observation& observation,
+                           const std::vector<Pose>& starts, const Eigen::VectorXd& latent,
+                           const RegistrationSettings& settings) {
+  const InitialisationSettings& init = settings.initialisation;
+  std::vector<SpaceSolution> candidates(starts.size());
+  std::vector<Pose> origin = starts;
+  for (std::size_t i = 0; i < starts.size(); ++i) {
+    candidates[i].latent = latent;
+    candidates[i].pose = starts[i];
+  }
+  std::vector<double> scores(starts.size());
+  const auto finalists = static_cast<std::size_t>(std::max(1, init.finalists));
+  int steps = std::max(1, init.screening_iterations);
+  while (candidates.size() > finalists) {
+    parallel_for(
+        static_cast<Eigen::Index>(candidates.size()),
+        [&](Eigen::Index begin, Eigen::Index end) {
+          for (auto i = static_cast<std::size_t>(begin); i < static_cast<std::size_t>(end); ++i) {
+            advance(candidates[i], steps, space, normals, observation, settings);
+            scores[i] = selection_score(space, normals, observation, candidates[i], settings);
+          }
+        },
+        0, 1);
+    std::vector<std::size_t> order(candidates.size());
+    std::iota(order.begin(), order.end(), 0);
+    std::sort(order.begin(), order.end(),
+              [&](std::size_t a, std::size_t b) { return scores[a] < scores[b]; });
+    const std::size_t keep = std::max(finalists, candidates.size() / 2);
+    std::vector<SpaceSolution> kept;
+    std::vector<Pose> kept_origin;
+    for (std::size_t k = 0; k < keep; ++k) {
+      kept.push_back(std::move(candidates[order[k]]));
+      kept_origin.push_back(origin[order[k]]);
+    }
+    candidates = std::move(kept);
+    origin = std::move(kept_origin);
+    scores.resize(candidates.size());
+    steps *= 2;
+  }
+  SearchOutcome outcome;
+  outcome.hypotheses = static_cast<int>(starts.size());
+  outcome.best_score = outcome.runner_up = std::numeric_limits<double>::infinity();
+  parallel_for(
+      static_cast<Eigen::Index>(candidates.size()),
+      [&](Eigen::Index begin, Eigen::Index end) {
+        for (auto i = static_cast<std::size_t>(begin); i < static_cast<std::size_t>(end); ++i) {
+          const int left = settings.convergence.outer_iterations - candidates[i].iterations;
+          if (left > 0 && !candidates[i].converged)
+            advance(candidates[i], left, space, normals, observation, settings);
+          scores[i] = selection_score(space, normals, observation, candidates[i], settings);
+        }
+      },
+      0, 1);
+  for (std::size_t i = 0; i < candidates.size(); ++i) {
+    const double score = scores[i];
+    if (score < outcome.best_score) {
+      outcome.runner_up = outcome.best_score;
+      outcome.best_score = score;
+      outcome.best = candidates[i];
+      outcome.best_start = origin[i];
+    } else {
+      outcome.runner_up = std::min(outcome.runner_up, score);
+    }
+  }
+  return outcome;
+}
+
+}  // namespace partreg::core::detail

@@ -1,0 +1,42 @@
+#pragma once
+// The pose search of one space (internal to partreg_core): starting poses that cover what a robot meets (yaw
+// all round the up axis, tilts of it, principal-axis flips, or rotations spread over SO(3)), pruned coarse to
+// fine by successive halving, the survivors chosen by a score that agrees with the truth
+// (docs/registration.md).
+
+#include <vector>
+
+#include "partreg/core/category_model.hpp"
+#include "space_solver.hpp"
+
+namespace partreg::core::detail {
+
+/// The starting poses of `space` on `observation`: centroids aligned, rotations as the initialisation asks.
+/// `centre` is the point put on the observation's centroid (normalised canonical frame); `canonical` gives
+/// the principal axes.
+std::vector<Pose> starting_poses(const Eigen::Vector3d& centre, const Points& canonical,
+                                 const Observation& observation, const RegistrationSettings& settings);
+
+/// What the search kept, and how clear the choice was.
+struct SearchOutcome {
+  SpaceSolution best;
+  int hypotheses = 0;       ///< starting poses tried
+  double best_score = 0.0;  ///< the winner's selection score (normalised length)
+  double runner_up = 0.0;   ///< the best score among the other finalists (infinity when none)
+  Pose best_start;          ///< where the winner started
+};
+
+/// Fits `space` from every pose in `starts`: each gets a few outer steps, the better half (by score) goes on
+/// with twice the steps, until `InitialisationSettings::finalists` remain; those run to convergence and the
+/// lowest score wins.
+SearchOutcome search_poses(const ShapeSpace& space, const Points& normals, const Observation& observation,
+                           const std::vector<Pose>& starts, const Eigen::VectorXd& latent,
+                           const RegistrationSettings& settings);
+
+/// The selection score of a fitted pose and latent: the mean of the robust (trimmed at the loss scale x 4)
+/// closest-point distances each way between the posed deformed canonical points that face the viewpoint and
+/// the observation; lower is better (normalised length).
+double selection_score(const ShapeSpace& space, const Points& normals, const Observation& observation,
+                       const SpaceSolution& solution, const RegistrationSettings& settings);
+
+}  // namespace partreg::core::detail

@@ -1,0 +1,116 @@
+// Farthest-point sampling checked against its definition: starts at the given row, every next pick is a
+// point farthest from the rows picked so far, no row twice, and exactly the count asked for.
+#include "partreg/core/sampling.hpp"
+
+#include <gtest/gtest.h>
+
+#include <random>
+#include <set>
+
+#include "partreg/core/errors.hpp"
+
+namespace partreg::core {
+namespace {
+
+Points random_points(Eigen::Index count, std::uint64_t seed) {
+  std::mt19937_64 generator(seed);
+  std::uniform_real_distribution<double> uniform(-1.0, 1.0);
+  Points points(count, 3);
+  for (Eigen::Index i = 0; i < count; ++i)
+    for (int d = 0; d < 3; ++d) points(i, d) = uniform(generator);
+  return points;
+}
+
+/// Squared distance of every row of `points` to the nearest of the rows `picked`.
+Eigen::VectorXd squared_distance_to(const Points& points, const std::vector<int>& picked) {
+  Eigen::VectorXd distance =
+      Eigen::VectorXd::Constant(points.rows(), std::numeric_limits<double>::infinity());
+  for (const int row : picked)
+    distance = distance.cwiseMin((points.rowwise() - points.row(row)).rowwise().squaredNorm());
+  return distance;
+}
+
+/// Checks the definition pick by pick (a brute-force O(N count^2) scan; fine for test sizes).
+void expect_farthest_point_order(const Points& points, const std::vector<int>& picks, int first) {
+  ASSERT_FALSE(picks.empty());
+  EXPECT_EQ(picks.front(), first);
+  std::vector<int> so_far{picks.front()};
+  for (std::size_t k = 1; k < picks.size(); ++k) {
+    const Eigen::VectorXd distance = squared_distance_to(points, so_far);
+    ASSERT_GE(picks[k], 0);
+    ASSERT_LT(picks[k], points.rows());
+    EXPECT_DOUBLE_EQ(distance[picks[k]], distance.maxCoeff()) << "pick " << k << " is not a farthest point";
+    so_far.push_back(picks[k]);
+  }
+  EXPECT_EQ(std::set<int>(picks.begin(), picks.end()).size(), picks.size()) << "a row was picked twice";
+}
+
+TEST(FarthestPointSampling, EveryPickIsTheFarthestFromThoseBefore) {
+  const Points points = random_points(600, 3);
+  for (const int first : {0, 17, 599}) {
+    SCOPED_TRACE("first row " + std::to_string(first));
+    const std::vector<int> picks = farthest_point_indices(points, 60, first);
+    ASSERT_EQ(picks.size(), 60u);
+    expect_farthest_point_order(points, picks, first);
+  }
+}
+
+TEST(FarthestPointSampling, PicksTheCornersOfACubeFirst) {
+  // Interior points plus the 8 corners: from the centre, the next 8 picks must be the 8 corners.
+  Points points(108, 3);
+  points.topRows(100) = 0.5 * random_points(100, 5);
+  points.row(0).setZero();  // the start, at the centre
+  for (int c = 0; c < 8; ++c) points.row(100 + c) << (c & 1 ? 1 : -1), (c & 2 ? 1 : -1), (c & 4 ? 1 : -1);
+  const std::vector<int> picks = farthest_point_indices(points, 9, 0);
+  EXPECT_EQ(std::set<int>(picks.begin() + 1, picks.end()),
+            std::set<int>({100, 101, 102, 103, 104, 105, 106, 107}));
+}
+
+TEST(FarthestPointSampling, AllRowsAtTheSizeAndAnErrorAbove) {
+  const Points points = random_points(50, 9);
+  const std::vector<int> all = farthest_point_indices(points, 50, 4);
+  ASSERT_EQ(all.size(), 50u);
+  expect_farthest_point_order(points, all, 4);  // a permutation of every row
+  EXPECT_THROW(farthest_point_indices(points, 51), InputError);
+  EXPECT_TRUE(farthest_point_indices(points, 0).empty());
+  EXPECT_THROW(farthest_point_indices(points, 5, 50), UsageError);
+  EXPECT_THROW(farthest_point_indices(points, 5, -1), UsageError);
+}
+
+/// 30 distinct points, each three times over.
+Points tripled_points() {
+  const Points distinct = random_points(30, 13);
+  Points points(90, 3);
+  for (int copy = 0; copy < 3; ++copy) points.middleRows(copy * 30, 30) = distinct;
+  return points;
+}
+
+TEST(FarthestPointSampling, CoversEveryDistinctPositionOfDuplicatedPoints) {
+  const Points points = tripled_points();
+  const std::vector<int> thirty = farthest_point_indices(points, 30, 0);
+  expect_farthest_point_order(points, thirty, 0);
+  std::set<int> positions;  // the first 30 picks are the 30 distinct positions, one row each
+  for (const int row : thirty) positions.insert(row % 30);
+  EXPECT_EQ(positions.size(), 30u);
+}
+
+// Fails today: once every distinct position is picked, every distance left is 0 and the sampler picks
+// row 0 again (90 picks, 30 distinct rows), where the header promises row indices. Reported to the lead
+// (sampling.cpp is being changed elsewhere); enable it with the fix.
+TEST(FarthestPointSampling, DISABLED_NoRowTwiceWhenTheDistinctPositionsRunOut) {
+  const Points points = tripled_points();
+  expect_farthest_point_order(points, farthest_point_indices(points, 90, 0), 0);
+  expect_farthest_point_order(points, farthest_point_indices(points, 45, 7), 7);
+}
+
+TEST(SelectRows, CopiesTheListedRowsInOrder) {
+  const Points points = random_points(10, 17);
+  const Points picked = select_rows(points, {7, 2, 7});
+  ASSERT_EQ(picked.rows(), 3);
+  EXPECT_EQ(picked.row(0), points.row(7));
+  EXPECT_EQ(picked.row(1), points.row(2));
+  EXPECT_EQ(picked.row(2), points.row(7));
+}
+
+}  // namespace
+}  // namespace partreg::core
