@@ -352,7 +352,8 @@ def test_registration_releases_the_interpreter_lock(partreg, model, observed_mug
     def register():
         outcome["start"] = time.monotonic()
         started.set()
-        outcome["result"] = partreg.register(model, points, variant="hol+part")
+        # Many starting poses: a call long enough (about 0.3 s or more) that 20 ms is well inside it.
+        outcome["result"] = partreg.register(model, points, variant="hol+part", restarts=32)
 
     worker = threading.Thread(target=register)
     worker.start()
