@@ -11,6 +11,7 @@ packages=(
   libosmesa6-dev libglfw3-dev libimgui-dev python3-glad xvfb xauth
   clang-14 libclang-rt-14-dev
   parallel
+  pybind11-dev python3-dev python3-pytest python3-numpy python3-open3d
 )
 missing=()
 for package in "${packages[@]}"; do

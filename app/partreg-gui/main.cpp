@@ -10,6 +10,7 @@
 #include "partreg/ui/executor.hpp"
 #include "partreg/ui/gui_frame.hpp"
 #include "partreg/ui/script.hpp"
+#include "partreg/version.hpp"
 
 namespace partreg::app {
 namespace {
@@ -59,7 +60,7 @@ int main(int argc, char** argv) {
   partreg::app::GuiOptions options;
   std::string antialiasing = "msaa", size = "1280x800";
   CLI::App app{"partreg-gui: label canonical meshes, explore shape spaces, step through registrations"};
-  app.set_version_flag("--version", std::string("partreg-gui ") + PARTREG_VERSION);
+  app.set_version_flag("--version", std::string("partreg-gui ") + partreg::kVersion);
   app.add_option("INPUT", options.input, "a model (.prm), a mesh to label, or a cloud to register");
   app.add_option("--script", options.script_path, "replay these commands (docs/gui.md)");
   app.add_flag("--headless", options.headless, "no window: replay --script through OSMesa");

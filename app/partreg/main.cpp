@@ -4,6 +4,7 @@
 
 #include "partreg/commands/commands.hpp"
 #include "partreg/core/errors.hpp"
+#include "partreg/version.hpp"
 
 namespace {
 

@@ -11,7 +11,7 @@ mkdir -p "$scratch/root" "$scratch/shared"
 ln -s "$binary_dir" "$scratch/root/build"
 ln -s "$source_dir/assets" "$scratch/root/assets"
 ln -s "$(realpath "$data_dir")" "$scratch/shared/data"
-awk '/^## Commands/{on=1} /^### The library/{on=0} on && /^```sh/{block=1; next} block && /^```/{block=0; next} block' \
+awk '/^## /{on=($0 == "## Commands")} on && /^```sh/{block=1; next} block && /^```/{block=0; next} block' \
   "$source_dir/README.md" > "$scratch/commands.sh"
 [ -s "$scratch/commands.sh" ] || { echo "no commands found in README.md"; exit 1; }
 cd "$scratch/root"

@@ -62,29 +62,6 @@ nlohmann::json spaces_json(const core::CategoryModel& model) {
   return spaces;
 }
 
-// A labels file made for one instance's mesh gives that instance (the canonical) its parts.
-std::string apply_labels_file(io::Dataset& dataset, const std::string& labels_path,
-                              const std::string& canonical, const io::DatasetOptions& options) {
-  if (dataset.part_folders)
-    throw UsageError("dataset " + dataset.name + " has part files already; --labels is for datasets without");
-  const io::PartLabels labels = io::read_labels_file(labels_path);
-  const std::string instance =
-      canonical.empty() ? std::filesystem::path(labels.source).stem().string() : canonical;
-  if (labels.target == io::PartLabels::Target::faces) {
-    io::apply_face_labels(dataset, instance, labels.names, labels.labels, options);
-    return instance;
-  }
-  auto found =
-      std::find_if(dataset.instances.begin(), dataset.instances.end(),
-                   [&](const core::TrainingInstance& candidate) { return candidate.name == instance; });
-  if (found == dataset.instances.end())
-    throw InputError("labels file " + labels_path + " is for '" + instance + "', not in the dataset");
-  io::check_labels_match(labels, static_cast<std::size_t>(found->points.rows()), "points of " + instance);
-  found->part = labels.labels;
-  dataset.part_names = labels.names;
-  return instance;
-}
-
 std::pair<int, int> parse_size(const std::string& text, const std::string& option) {
   std::stringstream in(text);
   long long width = 0, height = 0;

@@ -33,10 +33,7 @@ using io::matrix_json;
 /// Each space of a model: name, points, dimensions, beta, variances and explained fraction per dimension.
 nlohmann::json spaces_json(const core::CategoryModel& model);
 
-/// Gives the instance a labels file was made for (`canonical`, or the labels' source file name) its parts;
-/// returns that instance's name. UsageError for a dataset with part files; InputError for a mismatch.
-std::string apply_labels_file(io::Dataset& dataset, const std::string& labels_path,
-                              const std::string& canonical, const io::DatasetOptions& options);
+using io::apply_labels_file;
 
 /// "1280x960" -> {1280, 960}; UsageError naming `option` for anything else or a side below 1 pixel.
 std::pair<int, int> parse_size(const std::string& text, const std::string& option);

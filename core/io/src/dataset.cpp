@@ -7,6 +7,7 @@
 #include "partreg/core/errors.hpp"
 #include "partreg/core/sampling.hpp"
 #include "partreg/io/geometry_io.hpp"
+#include "partreg/io/labels_file.hpp"
 #include "partreg/io/mesh_io.hpp"
 
 namespace partreg::io {
@@ -186,6 +187,29 @@ void apply_face_labels(Dataset& dataset, const std::string& instance,
   const auto index = static_cast<std::uint64_t>(found - dataset.instances.begin());
   *found = instance_from_parts(instance, parts, options, options.seed + index);
   dataset.part_names = part_names;
+}
+
+// A labels file made for one instance's mesh gives that instance (the canonical) its parts.
+std::string apply_labels_file(Dataset& dataset, const std::filesystem::path& labels_path,
+                              const std::string& canonical, const DatasetOptions& options) {
+  if (dataset.part_folders)
+    throw UsageError("dataset " + dataset.name + " has part files already; --labels is for datasets without");
+  const PartLabels labels = read_labels_file(labels_path);
+  const std::string instance =
+      canonical.empty() ? std::filesystem::path(labels.source).stem().string() : canonical;
+  if (labels.target == PartLabels::Target::faces) {
+    apply_face_labels(dataset, instance, labels.names, labels.labels, options);
+    return instance;
+  }
+  auto found =
+      std::find_if(dataset.instances.begin(), dataset.instances.end(),
+                   [&](const core::TrainingInstance& candidate) { return candidate.name == instance; });
+  if (found == dataset.instances.end())
+    throw InputError("labels file " + labels_path.string() + " is for '" + instance + "', not in the dataset");
+  check_labels_match(labels, static_cast<std::size_t>(found->points.rows()), "points of " + instance);
+  found->part = labels.labels;
+  dataset.part_names = labels.names;
+  return instance;
 }
 
 }  // namespace partreg::io

@@ -11,6 +11,7 @@
 #include "partreg/core/errors.hpp"
 #include "partreg/io/atomic_file.hpp"
 #include "partreg/io/read_limits.hpp"
+#include "partreg/version.hpp"
 
 namespace partreg::io {
 namespace {

@@ -39,4 +39,9 @@ void apply_face_labels(Dataset& dataset, const std::string& instance,
                        const std::vector<std::string>& part_names, const Eigen::VectorXi& face_labels,
                        const DatasetOptions& options = {});
 
+/// Gives the instance a labels file was made for (`canonical`, or the labels' source file name) its parts;
+/// returns that instance's name. UsageError for a dataset with part files; InputError for a mismatch.
+std::string apply_labels_file(Dataset& dataset, const std::filesystem::path& labels_path,
+                              const std::string& canonical, const DatasetOptions& options = {});
+
 }  // namespace partreg::io

@@ -1,0 +1,219 @@
+# Type stubs of the partreg module (the compiled _partreg, re-exported by partreg/__init__.py).
+# Arrays: float64 point sets of shape (N, 3), C-contiguous (anything else raises UsageError); int32 parts.
+# Units and frames are in each docstring of the module itself (help(partreg.register)).
+import os
+from typing import Any, Optional, Sequence, Union
+
+import numpy as np
+import numpy.typing as npt
+
+__version__: str
+model_format_version: int
+
+Float64Array = npt.NDArray[np.float64]
+Int32Array = npt.NDArray[np.int32]
+IndexArray = Union[npt.NDArray[np.int32], npt.NDArray[np.int64]]
+PathLike = Union[str, os.PathLike[str]]
+
+class InputError(RuntimeError):
+    """Bad data or a failing resource: missing file, NaN points, a model of another format version."""
+
+class UsageError(ValueError):
+    """A request that can never succeed as stated: unknown setting, wrong array shape or dtype."""
+
+class Mesh:
+    def __init__(self, vertices: Float64Array, faces: IndexArray) -> None: ...
+    @property
+    def vertices(self) -> Float64Array:
+        """(V, 3) vertex positions."""
+    @property
+    def faces(self) -> Int32Array:
+        """(F, 3) vertex indices."""
+    @property
+    def normals(self) -> Float64Array:
+        """(V, 3) unit vertex normals, or (0, 3)."""
+
+class Frame:
+    name: str
+    def __init__(self, name: str, position: Float64Array, rotation: Optional[Float64Array] = None) -> None: ...
+    @property
+    def position(self) -> Float64Array:
+        """(3,) position, data units."""
+    @property
+    def rotation(self) -> Float64Array:
+        """(3, 3) rotation; columns are the frame's axes."""
+
+class ShapeSpace:
+    name: str
+    point_indices: list[int]
+    beta: float
+    total_variance: float
+    @property
+    def dimensions(self) -> int: ...
+    @property
+    def point_count(self) -> int: ...
+    @property
+    def canonical(self) -> Float64Array:
+        """(M, 3) canonical points, normalised units."""
+    @property
+    def mean(self) -> Float64Array:
+        """(3M,) mean weight field."""
+    @property
+    def basis(self) -> Float64Array:
+        """(3M, q) weight fields of the principal directions."""
+    @property
+    def variances(self) -> Float64Array:
+        """(q,) descending."""
+    @property
+    def kernel_mean(self) -> Float64Array: ...
+    @property
+    def kernel_basis(self) -> Float64Array: ...
+    @property
+    def training_latents(self) -> Float64Array:
+        """(K, q)."""
+    def explained_fraction(self) -> Float64Array: ...
+    def weights(self, latent: Float64Array) -> Float64Array:
+        """(M, 3) kernel weights W(x)."""
+    def deformed(self, latent: Float64Array) -> Float64Array:
+        """(M, 3) the shape at a latent, normalised units, canonical frame."""
+
+class Model:
+    category: str
+    part_names: list[str]
+    @property
+    def has_parts(self) -> bool: ...
+    @property
+    def scale(self) -> float:
+        """The canonical's bounding-box diagonal, data units."""
+    @property
+    def centre(self) -> Float64Array: ...
+    @property
+    def training_instances(self) -> list[str]: ...
+    @property
+    def canonical_name(self) -> str: ...
+    @property
+    def spaces(self) -> list[ShapeSpace]: ...
+    @property
+    def canonical(self) -> Float64Array:
+        """(M, 3) normalised units."""
+    @property
+    def canonical_part(self) -> Int32Array: ...
+    @property
+    def mesh_vertex_part(self) -> Int32Array: ...
+    @property
+    def canonical_mesh(self) -> Mesh: ...
+    def space(self, name: str) -> ShapeSpace: ...
+    def to_data(self, points: Float64Array) -> Float64Array: ...
+    def shape_at(self, latent: Float64Array, space: str = "holistic") -> Float64Array:
+        """(M, 3) the space's canonical at a latent, data frame and units."""
+
+class FitStatistics:
+    mean: float
+    p90: float
+    mean_normalised: float
+    p90_normalised: float
+
+class SpaceFit:
+    space: str
+    @property
+    def stop_reason(self) -> str: ...
+    scale: float
+    cost: float
+    iterations: int
+    seconds: float
+    @property
+    def latent(self) -> Float64Array: ...
+    @property
+    def T_observed_canonical(self) -> Float64Array:
+        """(4, 4) canonical data frame -> observed frame."""
+
+class HistoryStep:
+    space: str
+    cost: float
+    seconds: float
+    @property
+    def latent(self) -> Float64Array: ...
+    @property
+    def T_observed_canonical(self) -> Float64Array: ...
+
+class RegistrationResult:
+    fits: list[SpaceFit]
+    history: list[HistoryStep]
+    fit: FitStatistics
+    seconds: float
+    @property
+    def variant(self) -> str: ...
+    @property
+    def deformed(self) -> Float64Array:
+        """(M, 3) deformed canonical points, observed frame, data units."""
+    @property
+    def part(self) -> Int32Array: ...
+    def space_fit(self, name: str) -> SpaceFit: ...
+
+class _CpdResult:
+    sigma2: float
+    iterations: int
+    seconds: float
+    @property
+    def stop_reason(self) -> str: ...
+    @property
+    def moved(self) -> Float64Array: ...
+
+class RigidCpdResult(_CpdResult):
+    scale: float
+    @property
+    def rotation(self) -> Float64Array: ...
+    @property
+    def translation(self) -> Float64Array: ...
+    @property
+    def T_target_source(self) -> Float64Array: ...
+
+class AffineCpdResult(_CpdResult):
+    @property
+    def linear(self) -> Float64Array: ...
+    @property
+    def translation(self) -> Float64Array: ...
+
+class NonrigidCpdResult(_CpdResult):
+    beta: float
+    kernel_rank: int
+    @property
+    def weights(self) -> Float64Array: ...
+    def apply(self, points: Float64Array) -> Float64Array: ...
+
+class View:
+    @property
+    def points(self) -> Float64Array: ...
+    @property
+    def normals(self) -> Float64Array: ...
+    @property
+    def viewpoint(self) -> Float64Array: ...
+    @property
+    def direction(self) -> Float64Array: ...
+
+def read_model(path: PathLike) -> Model: ...
+def write_model(path: PathLike, model: Model) -> None: ...
+def read_cloud(path: PathLike, mesh_samples: int = 3000, seed: int = 1) -> Float64Array: ...
+def read_mesh(path: PathLike) -> Mesh: ...
+def write_mesh(path: PathLike, mesh: Mesh, vertex_part: Optional[IndexArray] = None) -> None: ...
+def write_cloud(path: PathLike, points: Float64Array, part: Optional[IndexArray] = None) -> None: ...
+def read_frames(path: PathLike) -> list[Frame]: ...
+def write_frames(path: PathLike, frames: Sequence[Frame]) -> None: ...
+def train(dataset_dir: PathLike, *, labels: Optional[PathLike] = None, canonical: Optional[str] = None,
+          latent: int = 5, points: int = 1000, samples: int = 4000, beta: float = 0.3, lambda_: float = 3.0,
+          seed: int = 1, threads: int = 0) -> Model: ...
+# The keywords are the registration settings, generated from the library's one table of them:
+# registration_defaults() lists every name with its default.
+def register(model: Model, points: Float64Array, *, threads: int = 0, **settings: Any) -> RegistrationResult: ...
+def registration_defaults() -> dict[str, Any]: ...
+def registration_options() -> list[dict[str, Any]]: ...
+def deform_mesh(model: Model, result: RegistrationResult) -> Mesh: ...
+def deform_points(model: Model, result: RegistrationResult, points: Float64Array) -> Float64Array: ...
+def transfer_frames(model: Model, result: RegistrationResult, frames: Sequence[Frame]) -> list[Frame]: ...
+def cpd(source: Float64Array, target: Float64Array, mode: str = "nonrigid",
+        **settings: Any) -> Union[RigidCpdResult, AffineCpdResult, NonrigidCpdResult]: ...
+def sphere_directions(count: int = 42) -> list[Float64Array]: ...
+def views(geometry: Union[Mesh, Float64Array], count: int = 42, width: int = 160, height: int = 120,
+          fov_degrees: float = 45.0, margin: float = 1.1, threads: int = 0) -> list[View]: ...
+def measure_errors(deformed: Float64Array, part: IndexArray, part_names: Sequence[str], truth: Float64Array,
+                   diagonal: Optional[float] = None) -> dict[str, Any]: ...

@@ -1,0 +1,15 @@
+#pragma once
+/// \file
+/// The module's parts: its classes (types.cpp), its functions (functions.cpp).
+
+#include <pybind11/pybind11.h>
+
+namespace partreg::python {
+
+/// Mesh, Frame, Model, ShapeSpace, the registration result and its parts, CPD results, View.
+void bind_types(pybind11::module_& module);
+
+/// read/write, train, register, deform, transfer, cpd, views, errors.
+void bind_functions(pybind11::module_& module);
+
+}  // namespace partreg::python
