@@ -67,6 +67,10 @@ if(TARGET partreg_io)
   # Not PCL's own pcl_io.pc: it requires OpenNI's .pc files, which Debian's libpcl-dev does not pull in.
   string(APPEND PARTREG_PC_REQUIRES_PRIVATE " assimp")
   string(APPEND PARTREG_PC_PRIVATE " -lpcl_io -lpcl_common")
+  # VTK's XML I/O for .vtp files (vtk_io.cpp); Debian's VTK 9.1 ships no .pc files.
+  foreach(vtk_module IN ITEMS IOXML IOXMLParser IOCore CommonDataModel CommonCore)
+    string(APPEND PARTREG_PC_PRIVATE " -lvtk${vtk_module}-${PARTREG_VTK_VERSION}")
+  endforeach()
 endif()
 string(APPEND PARTREG_PC_LIBS " -lpartreg_core")
 if(NOT BUILD_SHARED_LIBS)

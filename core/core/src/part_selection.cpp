@@ -14,8 +14,10 @@ std::vector<double> parse_numbers(const std::string& text, std::size_t count, co
     char* end = nullptr;
     values.push_back(std::strtod(item.c_str(), &end));
     // strtod reads "nan", "inf" and overflowing literals too: they would travel on as silent garbage.
-    if (item.empty() || *end != '\0' || !std::isfinite(values.back()) || std::abs(values.back()) > 1e12)
-      throw UsageError(what + ": '" + item + "' in '" + text + "' is not a finite number (|x| <= 1e12)");
+    if (item.empty() || *end != '\0' || !std::isfinite(values.back()))
+      throw UsageError(what + ": '" + item + "' in '" + text + "' is not a finite number");
+    if (std::abs(values.back()) > 1e12)
+      throw UsageError(what + ": '" + item + "' in '" + text + "' is beyond 1e12, not a sensible size");
   }
   if (values.size() != count)
     throw UsageError(what + " needs " + std::to_string(count) + " comma-separated numbers; '" + text +

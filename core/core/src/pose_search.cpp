@@ -151,7 +151,10 @@ SearchOutcome search_poses(const ShapeSpace& space, const Points& normals, const
         static_cast<Eigen::Index>(candidates.size()),
         [&](Eigen::Index begin, Eigen::Index end) {
           for (auto i = static_cast<std::size_t>(begin); i < static_cast<std::size_t>(end); ++i) {
-            advance(candidates[i], steps, space, normals, observation, settings);
+            // Never more outer steps in all than the convergence settings allow.
+            const int budget =
+                std::min(steps, settings.convergence.outer_iterations - candidates[i].iterations);
+            if (budget > 0) advance(candidates[i], budget, space, normals, observation, settings);
             scores[i] = selection_score(space, normals, observation, candidates[i], settings);
           }
         },

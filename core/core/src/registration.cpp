@@ -172,8 +172,14 @@ RegistrationResult register_observation(const CategoryModel& model, const Points
     RegistrationSettings part_settings = settings;
     if (settings.variant == Variant::hol_part)
       part_observations = split_observation(model, observation, deformed_normalised);
-    else
+    else {
       part_settings.objective.direction = Direction::canonical_to_observed;
+      // A part alone is too ambiguous for a search all round (the real mug's handle lands at a wrong yaw):
+      // partwise keeps the paper's single start in the category frame.
+      part_settings.initialisation.restarts = 1;
+    }
+    const std::vector<Pose> part_poses =
+        detail::starting_poses(centre, model.canonical, observation, part_settings);
     // Parts are independent given their initialisation: solve them in parallel, within the thread budget.
     std::vector<detail::SearchOutcome> parts(model.spaces.size() - 1);
     parallel_for(
@@ -184,7 +190,7 @@ RegistrationResult register_observation(const CategoryModel& model, const Points
             const ShapeSpace& space = model.spaces[p];
             const Points part_normals = normals.rows() ? rows_of(normals, space.point_indices) : Points();
             if (settings.variant == Variant::partwise) {
-              parts[p - 1] = detail::search_poses(space, part_normals, observation, poses,
+              parts[p - 1] = detail::search_poses(space, part_normals, observation, part_poses,
                                                   Eigen::VectorXd::Zero(space.dimensions()), part_settings);
               continue;
             }
