@@ -49,13 +49,17 @@ TEST(RegistrationOptions, EveryOptionRoundTripsItsDefaultAndAChangedValue) {
   EXPECT_DOUBLE_EQ(settings.objective.loss_scale, 0.035);
   EXPECT_EQ(settings.initialisation.restarts, 6);
   EXPECT_TRUE(settings.objective.estimate_scale);
-  EXPECT_EQ(settings.initialisation.up, Eigen::Vector3d(0, 0, 2));
+  EXPECT_EQ(settings.initialisation.up, std::optional<Eigen::Vector3d>(Eigen::Vector3d(0, 0, 2)));
   ASSERT_TRUE(settings.viewpoint);
   EXPECT_EQ(*settings.viewpoint, Eigen::Vector3d(1, 2, 3));
   EXPECT_EQ(settings.convergence.outer_iterations, 9);
   EXPECT_EQ(settings.sampling.observed_points, 500);
   set_registration_option(settings, "viewpoint", "none");
   EXPECT_FALSE(settings.viewpoint);
+  // Unset, the up axis is the model's own (train --up), and says so.
+  EXPECT_EQ(registration_option("up").get(RegistrationSettings{}), "model");
+  set_registration_option(settings, "up", "model");
+  EXPECT_FALSE(settings.initialisation.up);
   // The values a result file records read back into the same request.
   RegistrationSettings copy;
   for (const auto& [name, value] : registration_option_values(settings))

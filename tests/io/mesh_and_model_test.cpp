@@ -76,9 +76,11 @@ core::CategoryModel small_model() {
 
 TEST(ModelFile, SavesAndLoadsBitForBit) {
   testing::TempDir dir;
-  const core::CategoryModel model = small_model();
+  core::CategoryModel model = small_model();
+  model.up = Eigen::Vector3d(0, 0.6, 0.8);  // the category's up axis is kept
   write_model(dir / "m.prm", model);
   const core::CategoryModel read = read_model(dir / "m.prm");
+  EXPECT_EQ(read.up, model.up);
   ASSERT_EQ(read.spaces.size(), model.spaces.size());
   EXPECT_EQ(read.canonical, model.canonical);
   EXPECT_EQ(read.canonical_part, model.canonical_part);

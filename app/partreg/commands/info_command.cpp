@@ -26,6 +26,7 @@ nlohmann::json describe(const core::CategoryModel& model) {
   const auto& record = model.training;
   return {{"category", model.category},
           {"parts", model.part_names},
+          {"up", {model.up.x(), model.up.y(), model.up.z()}},
           {"canonical_points", model.canonical.rows()},
           {"mesh_vertices", model.canonical_mesh.vertices.rows()},
           {"mesh_faces", model.canonical_mesh.faces.rows()},
@@ -48,7 +49,8 @@ void print(const nlohmann::json& info) {
   std::cout << "category " << info["category"].get<std::string>() << ": " << info["canonical_points"]
             << " canonical points, mesh " << info["mesh_vertices"] << " vertices / " << info["mesh_faces"]
             << " faces, diagonal " << info["scale"] << " (data units)\n";
-  std::cout << "parts: " << (info["parts"].empty() ? std::string("none") : info["parts"].dump()) << '\n';
+  std::cout << "parts: " << (info["parts"].empty() ? std::string("none") : info["parts"].dump())
+            << "; up axis " << info["up"].dump() << '\n';
   for (const auto& space : info["spaces"]) {
     std::cout << "space " << space["name"].get<std::string>() << ": " << space["points"] << " points, "
               << space["dimensions"] << " dimensions, explained variance:";

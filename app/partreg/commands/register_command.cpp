@@ -68,9 +68,9 @@ nlohmann::json baseline_errors(const core::CategoryModel& model, const core::Poi
                                const core::KdTree& truth, double diagonal, double partreg_figure) {
   const eval::BaselineObservation seen{&observed, &truth, diagonal, nullptr,
                                        holistic_pose(model, observed, result, options.settings)};
-  const core::InitialisationSettings& init = options.settings.initialisation;
+  const core::InitialisationSettings init = core::with_model_defaults(options.settings, model).initialisation;
   const std::vector<eval::BaselineScore> scores = eval::score_baselines(
-      model, eval::model_templates(model), seen, eval::start_rotations(init.restarts, init.up));
+      model, eval::model_templates(model), seen, eval::start_rotations(init.restarts, *init.up));
   nlohmann::json json = nlohmann::json::object();
   std::cerr << "baselines on the same observation, symmetric RMS of the diagonal:";
   for (const eval::BaselineScore& score : scores) {

@@ -8,6 +8,7 @@
 #include "partreg/commands/registration_flags.hpp"
 #include "partreg/core/errors.hpp"
 #include "partreg/core/parallel.hpp"
+#include "partreg/core/part_selection.hpp"
 #include "partreg/core/training.hpp"
 #include "partreg/io/dataset.hpp"
 #include "partreg/io/model_file.hpp"
@@ -23,6 +24,7 @@ struct TrainOptions {
   std::string canonical;
   std::string labels_path;
   std::string json_path;
+  std::string up = "0,1,0";  // the category's up axis, X,Y,Z
   io::DatasetOptions dataset;
   core::TrainingSettings settings;
 };
@@ -61,6 +63,13 @@ void run_train(TrainOptions& options) {
   if (options.settings.canonical_points < 10) throw UsageError("--points must be at least 10");
   if (options.settings.min_part_points < 0) throw UsageError("--part-points must be zero or positive");
   if (!options.canonical.empty()) options.settings.canonical = options.canonical;
+  try {
+    options.settings.up = core::parse_vector3(options.up, "the up axis");
+  } catch (const UsageError& error) {
+    throw UsageError(std::string("--up: ") + error.what());
+  }
+  if (!options.settings.up.allFinite() || !(options.settings.up.norm() > 1e-12))
+    throw UsageError("--up: the up axis " + options.up + " must be finite and of non-zero length");
   io::check_output(options.out_path, io::OutputKind::model, "--out");
   io::check_output(options.json_path, io::OutputKind::json, "--json");
   io::Dataset dataset = io::read_dataset(options.dataset_path, options.dataset);
@@ -117,6 +126,11 @@ void add_train_command(CLI::App& app) {
       ->capture_default_str();
   command->add_option("--lambda", options->settings.lambda, "CPD smoothness weight")->capture_default_str();
   command->add_option("--seed", options->dataset.seed, "sampling seed")->capture_default_str();
+  command
+      ->add_option("--up", options->up,
+                   "X,Y,Z: the category's up axis in its data frame; registration turns about it (z for "
+                   "the drills)")
+      ->capture_default_str();
   command->add_option("--json", options->json_path, "write a training summary as JSON ('-' for stdout)");
   command->callback([options] { run_train(*options); });
 }

@@ -37,6 +37,7 @@ void CategoryModel::validate() const {
   if (!(normalization.scale > 0.0) || !std::isfinite(normalization.scale))
     fail("the normalisation scale must be a positive finite length");
   if (!normalization.centre.allFinite()) fail("the normalisation centre is not finite");
+  if (!up.allFinite() || std::abs(up.norm() - 1.0) > 1e-6) fail("the up axis must be a finite unit vector");
   if (!canonical_mesh.vertices.allFinite()) fail("mesh vertices are not finite");
   if (canonical_part.size() != m) fail("part labels do not match the canonical points");
   const int parts = static_cast<int>(part_names.size());
@@ -71,10 +72,11 @@ void CategoryModel::validate() const {
       fail("space " + space.name + ": array sizes do not agree");
     if (space.training_latents.rows() != instances || space.training_latents.cols() != q)
       fail("space " + space.name + ": training latents do not match the instances and dimensions");
-    if (!(space.beta > 0.0) || !std::isfinite(space.beta)) fail("space " + space.name + ": beta must be positive");
+    if (!(space.beta > 0.0) || !std::isfinite(space.beta))
+      fail("space " + space.name + ": beta must be positive");
     if (!space.mean.allFinite() || !space.basis.allFinite() || !space.kernel_mean.allFinite() ||
-        !space.kernel_basis.allFinite() || !space.training_latents.allFinite() || !space.variances.allFinite() ||
-        !std::isfinite(space.total_variance))
+        !space.kernel_basis.allFinite() || !space.training_latents.allFinite() ||
+        !space.variances.allFinite() || !std::isfinite(space.total_variance))
       fail("space " + space.name + ": an array holds NaN or infinite values");
     if (space.variances.size() > 0 && space.variances.minCoeff() < 0.0)
       fail("space " + space.name + ": a variance is negative");

@@ -38,7 +38,7 @@ std::vector<Eigen::Matrix3d> base_rotations(const Points& canonical, const Obser
 std::vector<Eigen::Matrix3d> tilts(const InitialisationSettings& init) {
   std::vector<Eigen::Matrix3d> out = {Eigen::Matrix3d::Identity()};
   if (init.max_tilt <= 0.0) return out;
-  const Eigen::Vector3d up = init.up.normalized();
+  const Eigen::Vector3d up = init.up.value_or(Eigen::Vector3d::UnitY()).normalized();
   const Eigen::Vector3d a = up.unitOrthogonal(), b = up.cross(a);
   for (double angle : {0.5 * init.max_tilt, init.max_tilt})
     for (const Eigen::Vector3d& axis : {a, b, Eigen::Vector3d(-a), Eigen::Vector3d(-b)})
@@ -93,7 +93,7 @@ void advance(SpaceSolution& candidate, int steps, const ShapeSpace& space, const
 std::vector<Pose> starting_poses(const Eigen::Vector3d& centre, const Points& canonical,
                                  const Observation& observation, const RegistrationSettings& settings) {
   const InitialisationSettings& init = settings.initialisation;
-  const Eigen::Vector3d up = init.up.normalized();
+  const Eigen::Vector3d up = init.up.value_or(Eigen::Vector3d::UnitY()).normalized();
   std::vector<Eigen::Matrix3d> bases = init.any_rotation ? cube_rotations() : std::vector<Eigen::Matrix3d>{};
   if (!init.any_rotation)
     for (const Eigen::Matrix3d& base : base_rotations(canonical, observation, init))

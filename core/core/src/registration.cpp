@@ -136,10 +136,16 @@ FitStatistics fit_statistics(const Points& deformed, const Points& observed, dou
 
 }  // namespace
 
+RegistrationSettings with_model_defaults(RegistrationSettings settings, const CategoryModel& model) {
+  if (!settings.initialisation.up) settings.initialisation.up = model.up;
+  return settings;
+}
+
 RegistrationResult register_observation(const CategoryModel& model, const Points& observed,
-                                        const RegistrationSettings& settings) {
+                                        const RegistrationSettings& request) {
   const auto start = std::chrono::steady_clock::now();
-  validate(settings);
+  validate(request);
+  const RegistrationSettings settings = with_model_defaults(request, model);
   if (settings.variant != Variant::holistic && !model.has_parts())
     throw UsageError("model '" + model.category + "' has no parts: use the holistic variant");
   Eigen::Vector3d centroid;

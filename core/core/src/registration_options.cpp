@@ -98,14 +98,18 @@ RegistrationOption flag(std::string name, std::string help, Field field) {
 RegistrationOption up_axis() {
   return {"up",
           "X,Y,Z",
-          "the category's up axis (canonical frame); restarts turn about it",
+          "the category's up axis (canonical frame); restarts turn about it; 'model': the model's own, "
+          "from train --up",
           false,
           [](RegistrationSettings& s, const std::string& v) {
+            if (v == "model") return s.initialisation.up.reset();
             const Eigen::Vector3d up = finite_vector(v, "up");
             if (up.norm() < 1e-12) throw UsageError("up axis " + v + " has zero length");
             s.initialisation.up = up;
           },
-          [](const RegistrationSettings& s) { return vector_text(s.initialisation.up); }};
+          [](const RegistrationSettings& s) {
+            return s.initialisation.up ? vector_text(*s.initialisation.up) : std::string("model");
+          }};
 }
 
 RegistrationOption viewpoint() {

@@ -268,6 +268,8 @@ CategoryModel train_category(const std::string& category, const std::vector<Trai
                              TrainingReport* report, const TrainingProgressCallback& steps) {
   const auto start = std::chrono::steady_clock::now();
   check_instances(instances, part_names);
+  if (!settings.up.allFinite() || !(settings.up.norm() > 1e-12))
+    throw UsageError("the up axis must be a finite vector of non-zero length");
   TrainingReport local_report;
   TrainingReport& out = report ? *report : local_report;
   const std::size_t canonical_index = find_canonical(instances, settings, out.canonical_choice);
@@ -351,6 +353,7 @@ CategoryModel train_category(const std::string& category, const std::vector<Trai
   record.outlier_weight = settings.outlier_weight;
   record.latent_dimensions = settings.latent_dimensions;
   record.seed = settings.seed;
+  model.up = settings.up.normalized();
   model.validate();
   out.seconds = seconds_since(start);
   return model;

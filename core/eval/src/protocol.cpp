@@ -166,8 +166,9 @@ void run_job(const EvalInput& input, const EvalSettings& settings, const FoldCon
   const double level = relative_level(job.kind, paper_level);
   const std::uint64_t seed = mix(mix(mix(settings.seed, test.instance), observation.view + 1),
                                  static_cast<std::uint64_t>(job.kind) * 16 + (job.level_index + 1));
-  const Perturbed perturbed = perturb(observation.points, job.kind, level, test.diagonal, seed,
-                                      settings.registration.initialisation.up);
+  const Eigen::Vector3d up =
+      core::with_model_defaults(settings.registration, model).initialisation.up.value();
+  const Perturbed perturbed = perturb(observation.points, job.kind, level, test.diagonal, seed, up);
   const core::KdTree truth(
       moved_by(instance.points, perturbed.T_perturbed_original));  // shared by the variants
   const std::optional<core::Points> truth_of_row =
@@ -206,7 +207,7 @@ void run_job(const EvalInput& input, const EvalSettings& settings, const FoldCon
   BaselineObservation seen{&perturbed.points, &truth, test.diagonal, truth_of_row ? &*truth_of_row : nullptr,
                            holistic_pose(model, perturbed.points, registration, results)};
   const std::vector<Eigen::Matrix3d> starts =
-      start_rotations(settings.registration.initialisation.restarts, settings.registration.initialisation.up);
+      start_rotations(settings.registration.initialisation.restarts, up);
   const std::vector<BaselineScore> scores = score_baselines(model, fold.templates, seen, starts);
   for (std::size_t b = 0; b < scores.size(); ++b)
     rows[variants.size() + b] =

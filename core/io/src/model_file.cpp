@@ -130,6 +130,7 @@ void write_model(const std::filesystem::path& path, const core::CategoryModel& m
          {model.normalization.centre.x(), model.normalization.centre.y(), model.normalization.centre.z()}},
         {"scale", model.normalization.scale}}},
       {"part_names", model.part_names},
+      {"up", {model.up.x(), model.up.y(), model.up.z()}},
       {"training", training_json(model.training)},
       {"spaces", spaces},
       {"arrays", arrays.table()},
@@ -214,8 +215,8 @@ class ArrayReader {
 // Every member the header may have: a bit flipped in a name (the checksum's own included) is damage.
 void check_header_checksum(const nlohmann::json& header, const std::string& text, const std::string& file) {
   static const std::set<std::string> known = {
-      "format",   "format_version", "partreg_version", "category",   "normalization", "part_names",
-      "training", "spaces",         "arrays",          "blob_bytes", "header_fnv1a64"};
+      "format",   "format_version", "partreg_version", "category",   "normalization",  "part_names",
+      "training", "spaces",         "arrays",          "blob_bytes", "header_fnv1a64", "up"};
   for (const auto& member : header.items())
     if (!known.count(member.key()))
       throw InputError("model file " + file + " is damaged (unknown header member '" + member.key() + "')");
@@ -277,6 +278,9 @@ core::CategoryModel model_from(const nlohmann::json& header, const ArrayReader& 
                                 centre.at(2).get<double>()};
   model.normalization.scale = header.at("normalization").at("scale").get<double>();
   model.part_names = header.at("part_names").get<std::vector<std::string>>();
+  if (header.contains("up"))  // files from before the up axis was kept: +y, the default
+    model.up = {header.at("up").at(0).get<double>(), header.at("up").at(1).get<double>(),
+                header.at("up").at(2).get<double>()};
   model.training = training_from_json(header.at("training"));
   model.canonical = arrays.get<core::Points>("canonical");
   model.canonical_part = arrays.get<Eigen::VectorXi>("canonical_part");

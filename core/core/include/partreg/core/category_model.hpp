@@ -42,6 +42,9 @@ struct CategoryModel {
   /// shape_space.hpp, in training.instances order; the canonical's own row is zero). Its fitted shape is
   /// canonical + G(C, C) W_i, and any surface point z moves by G(z, C) W_i.
   Eigen::MatrixXd training_weights;
+  /// The category's up axis in its data frame (unit length; the normalised frame has the same axes): the
+  /// pose search turns about it unless a registration names another. +y for files from before it was kept.
+  Eigen::Vector3d up = Eigen::Vector3d::UnitY();
 
   bool has_parts() const { return !part_names.empty(); }
   const ShapeSpace& holistic() const { return spaces.front(); }

@@ -73,6 +73,9 @@ struct RegistrationResult {
   double seconds = 0.0;
 };
 
+/// `settings` with what it leaves to the model filled in from `model`: the up axis (CategoryModel::up).
+RegistrationSettings with_model_defaults(RegistrationSettings settings, const CategoryModel& model);
+
 /// Registers `model` to `observed` (data units, any frame near the category's). Throws InputError for fewer
 /// than 10 finite points or an observation wildly out of scale with the model; UsageError for a part-based
 /// variant on a model without parts or settings out of range (validate()). Parallel parts use the calling

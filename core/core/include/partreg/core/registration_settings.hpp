@@ -58,8 +58,9 @@ struct InitialisationSettings {
   bool align_principal_axes = false;  ///< also start from the 4 rotations aligning principal axes
   double max_tilt = 0.0;              ///< tilts of the up axis tried, up to this (radians, [0, pi]); 0 = none
   bool any_rotation = false;          ///< an unknown up axis: base rotations spread over SO(3)
-  /// The category's up axis (canonical frame, any length > 0).
-  Eigen::Vector3d up = Eigen::Vector3d::UnitY();
+  /// The category's up axis (canonical frame, any length > 0); unset: the model's own (CategoryModel::up,
+  /// given to `partreg train --up`).
+  std::optional<Eigen::Vector3d> up;
   int screening_iterations = 3;                 ///< outer steps every hypothesis gets before the first cut
   int finalists = 2;                            ///< hypotheses run to convergence
   SelectionScore score = SelectionScore::cost;  ///< what picks the winner

@@ -42,6 +42,9 @@ struct TrainingSettings {
   int max_iterations = 150;              ///< CPD iteration cap per registration
   std::optional<std::string> canonical;  ///< instance name to use as canonical; automatic when absent
   std::uint64_t seed = 1;                ///< PCA-EM seed
+  /// The category's up axis in its data frame (any length > 0; kept in the model, normalised): y for
+  /// ShapeNet and the kettles, z for the drills (../shared/data/README.md).
+  Eigen::Vector3d up = Eigen::Vector3d::UnitY();
 };
 
 /// What training did, for logs and the closing report.
