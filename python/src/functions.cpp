@@ -35,125 +35,152 @@ int thread_count(int threads) {
 }
 
 void bind_files(py::module_& m) {
-  m.def("read_model", [](const Path& path) { return std::make_shared<core::CategoryModel>(io::read_model(path)); },
-        py::arg("path"), Release(),
-        "Reads a model file (.prm). InputError for a missing file, a file that is not a model, another format "
-        "version, truncation or corruption.");
+  m.def(
+      "read_model",
+      [](const Path& path) { return std::make_shared<core::CategoryModel>(io::read_model(path)); },
+      py::arg("path"), Release(),
+      "Reads a model file (.prm). InputError for a missing file, a file that is not a model, another format "
+      "version, truncation or corruption.");
   m.def("write_model", &io::write_model, py::arg("path"), py::arg("model").none(false), Release(),
         "Writes a model file atomically.");
-  m.def("read_cloud", [](const Path& path, std::size_t mesh_samples, std::uint64_t seed) {
-          core::Cloud cloud;
-          {
-            py::gil_scoped_release release;
-            cloud = io::read_as_cloud(path, mesh_samples, seed);
-          }
-          return owned_points(std::move(cloud.points));
-        },
-        py::arg("path"), py::arg("mesh_samples") = 3000, py::arg("seed") = 1,
-        "Any cloud (PCD, PLY, XYZ; NaN points dropped) or mesh (sampled area-uniformly to mesh_samples points "
-        "with seed) as (N, 3) float64 points, the file's frame and units. The defaults are `partreg "
-        "register`'s for its OBSERVED argument.");
-  m.def("read_mesh", [](const Path& path) { return std::make_shared<core::Mesh>(io::read_mesh(path)); },
-        py::arg("path"), Release(), "Reads a triangle mesh (OBJ, PLY, STL, OFF, glTF/GLB, ...).");
-  m.def("write_mesh", [](const Path& path, const core::Mesh& mesh, py::handle vertex_part) {
-          const Eigen::VectorXi part = vertex_part.is_none() ? Eigen::VectorXi() : to_indices(vertex_part, "vertex_part");
+  m.def(
+      "read_cloud",
+      [](const Path& path, std::size_t mesh_samples, std::uint64_t seed) {
+        core::Cloud cloud;
+        {
           py::gil_scoped_release release;
-          io::write_mesh(path, mesh, vertex_part.is_none() ? nullptr : &part);
-        },
-        py::arg("path"), py::arg("mesh"), py::arg("vertex_part") = py::none(),
-        "Writes .obj or .ply atomically; a PLY gets an int `part` per vertex when vertex_part (V,) is given.");
-  m.def("write_cloud", [](const Path& path, py::handle points, py::handle part) {
-          core::Cloud cloud{to_points(points, "points"), {}};
-          io::PointAttributes attributes;
-          if (!part.is_none()) attributes.integers["part"] = to_indices(part, "part");
-          py::gil_scoped_release release;
-          io::write_cloud_ply(path, cloud, attributes);
-        },
-        py::arg("path"), py::arg("points"), py::arg("part") = py::none(),
-        "Writes a binary PLY cloud atomically, with an int `part` per point when part (N,) is given.");
+          cloud = io::read_as_cloud(path, mesh_samples, seed);
+        }
+        return owned_points(std::move(cloud.points));
+      },
+      py::arg("path"), py::arg("mesh_samples") = 3000, py::arg("seed") = 1,
+      "Any cloud (PCD, PLY, XYZ; NaN points dropped) or mesh (sampled area-uniformly to mesh_samples points "
+      "with seed) as (N, 3) float64 points, the file's frame and units. The defaults are `partreg "
+      "register`'s for its OBSERVED argument.");
+  m.def(
+      "read_mesh", [](const Path& path) { return std::make_shared<core::Mesh>(io::read_mesh(path)); },
+      py::arg("path"), Release(), "Reads a triangle mesh (OBJ, PLY, STL, OFF, glTF/GLB, ...).");
+  m.def(
+      "write_mesh",
+      [](const Path& path, const core::Mesh& mesh, py::handle vertex_part) {
+        const Eigen::VectorXi part =
+            vertex_part.is_none() ? Eigen::VectorXi() : to_indices(vertex_part, "vertex_part");
+        py::gil_scoped_release release;
+        io::write_mesh(path, mesh, vertex_part.is_none() ? nullptr : &part);
+      },
+      py::arg("path"), py::arg("mesh"), py::arg("vertex_part") = py::none(),
+      "Writes .obj or .ply atomically; a PLY gets an int `part` per vertex when vertex_part (V,) is given.");
+  m.def(
+      "write_cloud",
+      [](const Path& path, py::handle points, py::handle part) {
+        core::Cloud cloud{to_points(points, "points"), {}};
+        io::PointAttributes attributes;
+        if (!part.is_none()) attributes.integers["part"] = to_indices(part, "part");
+        py::gil_scoped_release release;
+        io::write_cloud_ply(path, cloud, attributes);
+      },
+      py::arg("path"), py::arg("points"), py::arg("part") = py::none(),
+      "Writes a binary PLY cloud atomically, with an int `part` per point when part (N,) is given.");
   m.def("read_frames", &io::read_frames_file, py::arg("path"),
         "Frames (name, position, rotation) from a partreg-frames JSON file.");
-  m.def("write_frames", &io::write_frames_file, py::arg("path"), py::arg("frames"), "Writes frames atomically.");
+  m.def("write_frames", &io::write_frames_file, py::arg("path"), py::arg("frames"),
+        "Writes frames atomically.");
 }
 
 void bind_training(py::module_& m) {
   const core::TrainingSettings training;
   const io::DatasetOptions dataset;
-  m.def("train",
-        [](const Path& folder, std::optional<Path> labels, std::optional<std::string> canonical, int latent,
-           int points, int samples, double beta, double lambda, std::uint64_t seed, int threads) {
-          const core::ThreadBudget budget(thread_count(threads));
-          if (latent < 1) throw UsageError("latent must be at least 1");
-          if (points < 10) throw UsageError("points must be at least 10");
-          core::TrainingSettings settings;
-          settings.latent_dimensions = latent;
-          settings.canonical_points = points;
-          settings.beta = beta;
-          settings.lambda = lambda;
-          settings.canonical = canonical;
-          const io::DatasetOptions options{samples, seed};
-          io::Dataset read = io::read_dataset(folder, options);
-          if (labels) settings.canonical = io::apply_labels_file(read, *labels, canonical.value_or(""), options);
-          return std::make_shared<core::CategoryModel>(
-              core::train_category(read.name, read.instances, read.part_names, settings));
-        },
-        Release(), py::arg("dataset_dir"), py::kw_only(), py::arg("labels") = py::none(),
-        py::arg("canonical") = py::none(), py::arg("latent") = training.latent_dimensions,
-        py::arg("points") = training.canonical_points, py::arg("samples") = dataset.points_per_instance,
-        py::arg("beta") = training.beta, py::arg("lambda_") = training.lambda, py::arg("seed") = dataset.seed,
-        py::arg("threads") = 0,
-        "Trains a category from a folder of pose-aligned instances, as `partreg train` with the same options "
-        "(lambda_ is --lambda). labels: a labels file giving the canonical its parts. beta in normalised units "
-        "(canonical diagonal 1). threads: as --threads, all counted, 0 = all cores.");
+  m.def(
+      "train",
+      [](const Path& folder, std::optional<Path> labels, std::optional<std::string> canonical, int latent,
+         int points, int samples, double beta, double lambda, std::uint64_t seed, int threads,
+         const std::array<double, 3>& up) {
+        const core::ThreadBudget budget(thread_count(threads));
+        if (latent < 1) throw UsageError("latent must be at least 1");
+        if (points < 10) throw UsageError("points must be at least 10");
+        core::TrainingSettings settings;
+        settings.latent_dimensions = latent;
+        settings.canonical_points = points;
+        settings.beta = beta;
+        settings.lambda = lambda;
+        settings.canonical = canonical;
+        settings.up = Eigen::Vector3d(up[0], up[1], up[2]);
+        const io::DatasetOptions options{samples, seed};
+        io::Dataset read = io::read_dataset(folder, options);
+        if (labels)
+          settings.canonical = io::apply_labels_file(read, *labels, canonical.value_or(""), options);
+        return std::make_shared<core::CategoryModel>(
+            core::train_category(read.name, read.instances, read.part_names, settings));
+      },
+      Release(), py::arg("dataset_dir"), py::kw_only(), py::arg("labels") = py::none(),
+      py::arg("canonical") = py::none(), py::arg("latent") = training.latent_dimensions,
+      py::arg("points") = training.canonical_points, py::arg("samples") = dataset.points_per_instance,
+      py::arg("beta") = training.beta, py::arg("lambda_") = training.lambda, py::arg("seed") = dataset.seed,
+      py::arg("threads") = 0, py::arg("up") = std::array<double, 3>{0.0, 1.0, 0.0},
+      "Trains a category from a folder of pose-aligned instances, as `partreg train` with the same options "
+      "(lambda_ is --lambda; up is --up, the category's up axis, kept in the model). labels: a labels file "
+      "giving the canonical its parts. beta in normalised units "
+      "(canonical diagonal 1). threads: as --threads, all counted, 0 = all cores.");
 }
 
 void bind_registration(py::module_& m) {
   // The docstring lists every keyword from the table, so help(partreg.register) cannot go out of date.
   const std::string register_doc =
       "Registers the model to observed points (N, 3) float64 (data units, any frame near the category's). "
-      "Keyword arguments are the registration options of `partreg register` ('-' as '_', same defaults): a bool "
-      "for a flag, a number, a name, or 3 numbers (viewpoint, up; None for no viewpoint). InputError for fewer "
-      "than 10 finite points, NaN points or an observation wildly out of scale; UsageError for a bad setting or "
+      "Keyword arguments are the registration options of `partreg register` ('-' as '_', same defaults): a "
+      "bool "
+      "for a flag, a number, a name, or 3 numbers (viewpoint, up; None for no viewpoint). InputError for "
+      "fewer "
+      "than 10 finite points, NaN points or an observation wildly out of scale; UsageError for a bad setting "
+      "or "
       "a part-based variant on a model without parts. threads: as --threads, all counted, 0 = all cores."
       "\n\nKeywords (default, help):" +
       registration_keywords_doc();
-  m.def("register",
-        [](const ModelPtr& model, py::handle points, int threads, const py::kwargs& keywords) {
-          const core::RegistrationSettings settings = registration_settings(keywords);
-          const core::Points observed = to_points(points, "points");
-          py::gil_scoped_release release;
-          const core::ThreadBudget budget(thread_count(threads));
-          return std::make_shared<core::RegistrationResult>(core::register_observation(*model, observed, settings));
-        },
-        py::arg("model").none(false), py::arg("points"), py::kw_only(), py::arg("threads") = 0,
-        register_doc.c_str());  // pybind11 copies the text
+  m.def(
+      "register",
+      [](const ModelPtr& model, py::handle points, int threads, const py::kwargs& keywords) {
+        const core::RegistrationSettings settings = registration_settings(keywords);
+        const core::Points observed = to_points(points, "points");
+        py::gil_scoped_release release;
+        const core::ThreadBudget budget(thread_count(threads));
+        return std::make_shared<core::RegistrationResult>(
+            core::register_observation(*model, observed, settings));
+      },
+      py::arg("model").none(false), py::arg("points"), py::kw_only(), py::arg("threads") = 0,
+      register_doc.c_str());  // pybind11 copies the text
   m.def("registration_defaults", &registration_defaults,
         "Every registration keyword of register() with its default (the command line's).");
   m.def("registration_options", &registration_options,
         "Every registration keyword: keyword, option (the command line's flag), value (its form), help (with "
         "units), default.");
-  m.def("deform_mesh", [](const ModelPtr& model, const ResultPtr& result) {
-          return std::make_shared<core::Mesh>(core::deform_mesh(*model, *result));
-        },
-        Release(), py::arg("model").none(false), py::arg("result").none(false),
-        "The canonical mesh deformed into the observed frame (data units, same faces).");
-  m.def("deform_points", [](const ModelPtr& model, const ResultPtr& result, py::handle points) {
-          const core::Points canonical_points = to_points(points, "points");
-          core::Points moved;
-          {
-            py::gil_scoped_release release;
-            moved = core::deform_points(*model, *result, canonical_points);
-          }
-          return owned_points(std::move(moved));
-        },
-        py::arg("model").none(false), py::arg("result").none(false), py::arg("points"),
-        "Moves points (N, 3) given in the canonical data frame into the observed frame as the registration "
-        "moved the canonical.");
-  m.def("transfer_frames", [](const ModelPtr& model, const ResultPtr& result, const std::vector<core::Frame>& frames) {
-          return core::transfer_frames(*model, *result, frames);
-        },
-        Release(), py::arg("model").none(false), py::arg("result").none(false), py::arg("frames"),
-        "Frames attached to the canonical (category's data frame) carried into the observed frame.");
+  m.def(
+      "deform_mesh",
+      [](const ModelPtr& model, const ResultPtr& result) {
+        return std::make_shared<core::Mesh>(core::deform_mesh(*model, *result));
+      },
+      Release(), py::arg("model").none(false), py::arg("result").none(false),
+      "The canonical mesh deformed into the observed frame (data units, same faces).");
+  m.def(
+      "deform_points",
+      [](const ModelPtr& model, const ResultPtr& result, py::handle points) {
+        const core::Points canonical_points = to_points(points, "points");
+        core::Points moved;
+        {
+          py::gil_scoped_release release;
+          moved = core::deform_points(*model, *result, canonical_points);
+        }
+        return owned_points(std::move(moved));
+      },
+      py::arg("model").none(false), py::arg("result").none(false), py::arg("points"),
+      "Moves points (N, 3) given in the canonical data frame into the observed frame as the registration "
+      "moved the canonical.");
+  m.def(
+      "transfer_frames",
+      [](const ModelPtr& model, const ResultPtr& result, const std::vector<core::Frame>& frames) {
+        return core::transfer_frames(*model, *result, frames);
+      },
+      Release(), py::arg("model").none(false), py::arg("result").none(false), py::arg("frames"),
+      "Frames attached to the canonical (category's data frame) carried into the observed frame.");
 }
 
 // CPD with the command line's names and defaults: the non-rigid settings' values serve every mode.
@@ -163,14 +190,23 @@ py::object run_cpd(const core::Points& source, const core::Points& target, const
   bool scale = false, exact = false;
   for (const auto& [key, value] : keywords) {
     const std::string name = py::str(key);
-    if (name == "beta") s.beta = value.cast<double>();
-    else if (name == "lambda_" || name == "lambda") s.lambda = value.cast<double>();
-    else if (name == "w") s.outlier_weight = value.cast<double>();
-    else if (name == "tolerance") s.tolerance = value.cast<double>();
-    else if (name == "max_iterations") s.max_iterations = value.cast<int>();
-    else if (name == "scale") scale = value.cast<bool>();
-    else if (name == "exact") exact = value.cast<bool>();
-    else throw UsageError("unknown cpd setting '" + name + "'; known: beta lambda_ w tolerance max_iterations scale exact");
+    if (name == "beta")
+      s.beta = value.cast<double>();
+    else if (name == "lambda_" || name == "lambda")
+      s.lambda = value.cast<double>();
+    else if (name == "w")
+      s.outlier_weight = value.cast<double>();
+    else if (name == "tolerance")
+      s.tolerance = value.cast<double>();
+    else if (name == "max_iterations")
+      s.max_iterations = value.cast<int>();
+    else if (name == "scale")
+      scale = value.cast<bool>();
+    else if (name == "exact")
+      exact = value.cast<bool>();
+    else
+      throw UsageError("unknown cpd setting '" + name +
+                       "'; known: beta lambda_ w tolerance max_iterations scale exact");
   }
   py::gil_scoped_release release;
   if (mode == "rigid") {
@@ -200,63 +236,72 @@ py::object run_cpd(const core::Points& source, const core::Points& target, const
 }
 
 void bind_cpd(py::module_& m) {
-  m.def("cpd", [](py::handle source, py::handle target, const std::string& mode, const py::kwargs& keywords) {
-          return run_cpd(to_points(source, "source"), to_points(target, "target"), mode, keywords);
-        },
-        py::arg("source"), py::arg("target"), py::arg("mode") = "nonrigid",
-        "Coherent Point Drift of source (M, 3) onto target (N, 3), as `partreg cpd`: mode rigid | affine | "
-        "nonrigid; settings beta=2 (normalised length: target diagonal 1), lambda_=2, w=0.1 (outlier weight), "
-        "tolerance=1e-5, max_iterations=150, scale=False (rigid), exact=False (nonrigid exact solver).");
+  m.def(
+      "cpd",
+      [](py::handle source, py::handle target, const std::string& mode, const py::kwargs& keywords) {
+        return run_cpd(to_points(source, "source"), to_points(target, "target"), mode, keywords);
+      },
+      py::arg("source"), py::arg("target"), py::arg("mode") = "nonrigid",
+      "Coherent Point Drift of source (M, 3) onto target (N, 3), as `partreg cpd`: mode rigid | affine | "
+      "nonrigid; settings beta=2 (normalised length: target diagonal 1), lambda_=2, w=0.1 (outlier weight), "
+      "tolerance=1e-5, max_iterations=150, scale=False (rigid), exact=False (nonrigid exact solver).");
 }
 
 void bind_evaluation(py::module_& m) {
   m.def("sphere_directions", &eval::sphere_directions, py::arg("count") = 42,
         "count unit directions from an icosphere (12, 42, 162, ...); UsageError for another count.");
-  m.def("views",
-        [](py::handle geometry, int count, int width, int height, double fov_degrees, double margin, int threads) {
-          const eval::CameraSettings camera{width, height, fov_degrees, margin};
-          const bool is_mesh = py::isinstance<core::Mesh>(geometry);
-          const core::Mesh mesh = is_mesh ? geometry.cast<core::Mesh>() : core::Mesh{};
-          const core::Points cloud = is_mesh ? core::Points() : to_points(geometry, "geometry");
-          py::gil_scoped_release release;
-          const core::ThreadBudget budget(thread_count(threads));
-          const eval::ViewCaster caster = is_mesh ? eval::ViewCaster(mesh) : eval::ViewCaster(cloud);
-          std::vector<std::shared_ptr<eval::View>> views;
-          for (const Eigen::Vector3d& direction : eval::sphere_directions(count))
-            views.push_back(std::make_shared<eval::View>(caster.cast(direction, camera)));
-          return views;
-        },
-        py::arg("geometry"), py::arg("count") = 42, py::arg("width") = eval::CameraSettings{}.width,
-        py::arg("height") = eval::CameraSettings{}.height, py::arg("fov_degrees") = eval::CameraSettings{}.fov_degrees,
-        py::arg("margin") = eval::CameraSettings{}.margin, py::arg("threads") = 0,
-        "Partial views of a Mesh or a cloud (N, 3) as `partreg views` casts them: a depth camera (width x height "
-        "pixels, vertical field of view in degrees) at each of count icosphere directions; object frame and units.");
-  m.def("measure_errors",
-        [](py::handle deformed, py::handle part, const std::vector<std::string>& part_names, py::handle truth,
-           std::optional<double> diagonal) {
-          const core::Points d = to_points(deformed, "deformed"), t = to_points(truth, "truth");
-          const Eigen::VectorXi p = to_indices(part, "part");
-          py::gil_scoped_release release;
-          const core::TruthErrors e =
-              core::measure_against_truth(d, p, part_names, t, diagonal ? *diagonal : core::truth_diagonal(t));
-          py::gil_scoped_acquire acquire;
-          py::dict figures;
-          figures["diagonal"] = e.diagonal;
-          figures["eq5"] = e.eq5;
-          figures["eq5_per_diagonal2"] = e.eq5_per_diagonal2;
-          figures["reverse_eq5"] = e.reverse_eq5;
-          figures["symmetric_rms_per_diagonal"] = e.symmetric_rms_per_diagonal;
-          figures["chamfer"] = e.chamfer;
-          figures["chamfer_per_diagonal"] = e.chamfer_per_diagonal;
-          figures["part_eq5_per_diagonal2"] = e.part_eq5_per_diagonal2;
-          return figures;
-        },
-        py::arg("deformed"), py::arg("part"), py::arg("part_names"), py::arg("truth"),
-        py::arg("diagonal") = py::none(),
-        "Every error figure of deformed points (M, 3; part (M,) indexing part_names) against a dense sample of "
-        "the true instance (N, 3), same frame and data units (core/truth_errors.hpp, the one home of them): eq5 "
-        "and reverse_eq5 in data units squared, chamfer in data units, *_per_diagonal divided by D, "
-        "*_per_diagonal2 by D^2; D is `diagonal` or, when omitted, the truth's bounding-box diagonal.");
+  m.def(
+      "views",
+      [](py::handle geometry, int count, int width, int height, double fov_degrees, double margin,
+         int threads) {
+        const eval::CameraSettings camera{width, height, fov_degrees, margin};
+        const bool is_mesh = py::isinstance<core::Mesh>(geometry);
+        const core::Mesh mesh = is_mesh ? geometry.cast<core::Mesh>() : core::Mesh{};
+        const core::Points cloud = is_mesh ? core::Points() : to_points(geometry, "geometry");
+        py::gil_scoped_release release;
+        const core::ThreadBudget budget(thread_count(threads));
+        const eval::ViewCaster caster = is_mesh ? eval::ViewCaster(mesh) : eval::ViewCaster(cloud);
+        std::vector<std::shared_ptr<eval::View>> views;
+        for (const Eigen::Vector3d& direction : eval::sphere_directions(count))
+          views.push_back(std::make_shared<eval::View>(caster.cast(direction, camera)));
+        return views;
+      },
+      py::arg("geometry"), py::arg("count") = 42, py::arg("width") = eval::CameraSettings{}.width,
+      py::arg("height") = eval::CameraSettings{}.height,
+      py::arg("fov_degrees") = eval::CameraSettings{}.fov_degrees,
+      py::arg("margin") = eval::CameraSettings{}.margin, py::arg("threads") = 0,
+      "Partial views of a Mesh or a cloud (N, 3) as `partreg views` casts them: a depth camera (width x "
+      "height "
+      "pixels, vertical field of view in degrees) at each of count icosphere directions; object frame and "
+      "units.");
+  m.def(
+      "measure_errors",
+      [](py::handle deformed, py::handle part, const std::vector<std::string>& part_names, py::handle truth,
+         std::optional<double> diagonal) {
+        const core::Points d = to_points(deformed, "deformed"), t = to_points(truth, "truth");
+        const Eigen::VectorXi p = to_indices(part, "part");
+        py::gil_scoped_release release;
+        const core::TruthErrors e =
+            core::measure_against_truth(d, p, part_names, t, diagonal ? *diagonal : core::truth_diagonal(t));
+        py::gil_scoped_acquire acquire;
+        py::dict figures;
+        figures["diagonal"] = e.diagonal;
+        figures["eq5"] = e.eq5;
+        figures["eq5_per_diagonal2"] = e.eq5_per_diagonal2;
+        figures["reverse_eq5"] = e.reverse_eq5;
+        figures["symmetric_rms_per_diagonal"] = e.symmetric_rms_per_diagonal;
+        figures["chamfer"] = e.chamfer;
+        figures["chamfer_per_diagonal"] = e.chamfer_per_diagonal;
+        figures["part_eq5_per_diagonal2"] = e.part_eq5_per_diagonal2;
+        return figures;
+      },
+      py::arg("deformed"), py::arg("part"), py::arg("part_names"), py::arg("truth"),
+      py::arg("diagonal") = py::none(),
+      "Every error figure of deformed points (M, 3; part (M,) indexing part_names) against a dense sample of "
+      "the true instance (N, 3), same frame and data units (core/truth_errors.hpp, the one home of them): "
+      "eq5 "
+      "and reverse_eq5 in data units squared, chamfer in data units, *_per_diagonal divided by D, "
+      "*_per_diagonal2 by D^2; D is `diagonal` or, when omitted, the truth's bounding-box diagonal.");
 }
 
 }  // namespace

@@ -4,6 +4,7 @@
 #include "registration_keywords.hpp"
 
 #include <algorithm>
+#include <cctype>
 
 #include "arrays.hpp"
 #include "partreg/core/errors.hpp"
@@ -38,7 +39,8 @@ std::string text_of(const py::handle& value, const std::string& keyword) {
   if (py::isinstance<py::array>(value) || py::isinstance<py::sequence>(value)) {
     std::string text;
     for (const py::handle item : py::iter(value))
-      text += (text.empty() ? "" : ",") + std::string(py::repr(py::float_(py::reinterpret_borrow<py::object>(item))));
+      text += (text.empty() ? "" : ",") +
+              std::string(py::repr(py::float_(py::reinterpret_borrow<py::object>(item))));
     return text;
   }
   throw UsageError(keyword + " cannot be " + std::string(py::repr(value)));
@@ -50,7 +52,9 @@ py::object value_of(const core::RegistrationOption& option, const std::string& t
   if (text == "none") return py::none();
   if (option.value_name == "N") return py::int_(std::stoi(text));
   if (option.value_name == "X") return py::float_(std::stod(text));
-  if (option.value_name.rfind("X,Y,Z", 0) == 0) return copy_vector(core::parse_vector3(text, option.name));
+  // A vector, unless a word stands in for one (up = "model": the model's own axis).
+  if (option.value_name.rfind("X,Y,Z", 0) == 0 && !std::isalpha(static_cast<unsigned char>(text.front())))
+    return copy_vector(core::parse_vector3(text, option.name));
   return py::str(text);
 }
 
