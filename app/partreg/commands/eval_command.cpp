@@ -35,7 +35,7 @@ struct EvalOptions {
   std::vector<std::string> variants = core::enum_names<core::Variant>();
   bool no_viewpoint = false, no_baselines = false;
   int folds = -1, views = -1;
-  std::vector<int> levels;  // 1-based indices of the paper's five levels; empty = the protocol's
+  std::vector<int> levels;          // 1-based indices of the paper's five levels; empty = the protocol's
   std::vector<std::string> sweeps;  // perturbation names; empty = the protocol's
   bool wide_rotation = false;
   io::DatasetOptions dataset;
@@ -135,8 +135,9 @@ void configure(EvalOptions& options) {
     settings.protocol.sweeps.clear();
     for (const std::string& name : options.sweeps) {
       const eval::Perturbation kind = core::parse_enum<eval::Perturbation>(name);
-      if (kind == eval::Perturbation::none) throw UsageError("--sweeps: 'none' is not a sweep");
-      settings.protocol.sweeps.push_back(kind);
+      if (kind == eval::Perturbation::none && options.sweeps.size() > 1)
+        throw UsageError("--sweeps: 'none' (clean observations only) goes alone");
+      if (kind != eval::Perturbation::none) settings.protocol.sweeps.push_back(kind);
     }
   }
   settings.protocol.wide_rotation = options.wide_rotation;
@@ -259,9 +260,10 @@ void add_eval_command(CLI::App& app) {
   command->add_option("--levels", o->levels, "which of the paper's five sweep levels (1-5), e.g. 1,3,5")
       ->delimiter(',');
   command
-      ->add_option("--sweeps", o->sweeps,
-                   "perturbation sweeps to run: noise, outliers, rotation, translation (the paper's, default) "
-                   "and yaw (0 to 330 degrees about the up axis)")
+      ->add_option(
+          "--sweeps", o->sweeps,
+          "perturbation sweeps to run: noise, outliers, rotation, translation (the paper's, default) "
+          "and yaw (0 to 330 degrees about the up axis); none: clean observations only")
       ->delimiter(',');
   command->add_flag("--wide-rotation", o->wide_rotation,
                     "the rotation sweep goes on past the paper's 0.65 rad, up to pi/2");
