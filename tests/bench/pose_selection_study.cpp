@@ -3,7 +3,8 @@
 // truth-best hypothesis is found by brute force (a single start at each of the search's yaws, scored against
 // the truth); each selection score then runs the search and we count how often its result is within 10% of
 // that best. Not a test: it prints the table in docs/registration.md. Run (a few minutes):
-//   ./build/tests/bench/pose_selection_study [folder ...]   (default: mugs bowls kettles)
+//   ./build/tests/bench/pose_selection_study [folder ...] [NAME=VALUE ...]   (default: mugs bowls kettles)
+// NAME=VALUE sets a registration option of the search (e.g. finalists=4); score=S studies that score only.
 #include <cstdio>
 #include <map>
 
@@ -49,10 +50,22 @@ double true_error(const core::RegistrationResult& result, const Observation& see
 }  // namespace
 
 int main(int argc, char** argv) {
-  std::vector<std::string> folders = {"mugs", "bowls", "kettles"};
-  if (argc > 1) folders.assign(argv + 1, argv + argc);
+  std::vector<std::string> folders;
+  std::vector<std::pair<std::string, std::string>> options;  // applied to every search
+  std::vector<std::string> scores = core::enum_names<core::SelectionScore>();
+  for (int a = 1; a < argc; ++a) {
+    const std::string argument = argv[a];
+    const std::size_t equals = argument.find('=');
+    if (equals == std::string::npos) {
+      folders.push_back(argument);
+    } else if (argument.substr(0, equals) == "score") {
+      scores = {argument.substr(equals + 1)};
+    } else {
+      options.emplace_back(argument.substr(0, equals), argument.substr(equals + 1));
+    }
+  }
+  if (folders.empty()) folders = {"mugs", "bowls", "kettles"};
   const int yaws = 12;
-  const std::vector<std::string> scores = core::enum_names<core::SelectionScore>();
   std::map<std::string, std::pair<int, int>> agree;  // score -> (within 10%, cases)
   std::map<std::string, double> error_sum;
   double best_sum = 0.0, single_sum = 0.0;
@@ -88,6 +101,7 @@ int main(int argc, char** argv) {
           search.viewpoint = seen.viewpoint;
           core::set_registration_option(search, "restarts", std::to_string(yaws));
           core::set_registration_option(search, "score", score);
+          for (const auto& [name, value] : options) core::set_registration_option(search, name, value);
           const double e = true_error(core::register_observation(model, seen.points, search), seen, diagonal);
           agree[score].first += e <= 1.1 * best;
           ++agree[score].second;
