@@ -49,6 +49,28 @@ TEST(MeshIo, ReadsStlAndOffThroughAssimp) {
   EXPECT_EQ(read_mesh(dir / "t.stl").faces.rows(), 1);
 }
 
+// ShapeNet OBJs name a material library that is not there. Looking for it, assimp opened paths built from
+// the parent folders relative to the working directory and failed on a directory ("File read error") when
+// the path held "..", as `../shared/data/...` from the repository's root does.
+TEST(MeshIo, AnObjWithAMissingMaterialLibraryReadsThroughAPathWithDotDot) {
+  testing::TempDir dir;
+  std::filesystem::create_directories(dir / "main");
+  std::filesystem::create_directories(dir / "shared" / "data" / "mugs");
+  std::filesystem::create_directories(dir / "shared" / "data" / "shared" / "data");  // a folder it tripped on
+  std::ofstream(dir / "shared" / "data" / "mugs" / "1a97f3c83016abca21d0de04f408950f.obj")
+      << "mtllib material0.mtl\nusemtl material0\nv 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\n"
+         "f 1 3 2\nf 1 2 4\nf 1 4 3\nf 2 3 4\n";
+  const std::filesystem::path before = std::filesystem::current_path();
+  std::filesystem::current_path(dir / "main");
+  core::Mesh mesh;
+  EXPECT_NO_THROW(mesh = read_mesh(dir / "main" / ".." / "shared" / "data" / "mugs" /
+                                   "1a97f3c83016abca21d0de04f408950f.obj"));
+  EXPECT_NO_THROW(read_mesh(std::filesystem::path("..") / "shared" / "data" / "mugs" /
+                            "1a97f3c83016abca21d0de04f408950f.obj"));
+  std::filesystem::current_path(before);
+  EXPECT_EQ(mesh.faces.rows(), 4);
+}
+
 TEST(MeshIo, AMeshWithoutFacesIsRefused) {
   testing::TempDir dir;
   std::ofstream(dir / "points.obj") << "v 0 0 0\nv 1 0 0\nv 0 1 0\n";

@@ -78,7 +78,12 @@ core::Mesh read_with_assimp(const std::filesystem::path& path) {
   Assimp::Importer importer;
   const unsigned flags = aiProcess_ValidateDataStructure | aiProcess_Triangulate |
                          aiProcess_JoinIdenticalVertices | aiProcess_FindDegenerates | aiProcess_SortByPType;
-  const aiScene* scene = importer.ReadFile(name, flags);
+  // assimp gets the file's canonical path: looking for a missing material library, its OBJ reader opens
+  // paths made from the parent folders' names relative to the working directory, and read a directory
+  // ("../shared/data") as a file when the path held "..".
+  std::error_code ignored;
+  const std::filesystem::path canonical = std::filesystem::weakly_canonical(path, ignored);
+  const aiScene* scene = importer.ReadFile(canonical.empty() ? name : canonical.string(), flags);
   if (!scene && lower_extension(path) == ".obj") scene = read_tolerant_obj(importer, path, flags);
   if (!scene || !scene->mRootNode)
     throw InputError("cannot read mesh " + name + ": " + importer.GetErrorString());
