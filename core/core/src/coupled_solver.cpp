@@ -132,15 +132,15 @@ SeamSide seam_side(const ShapeSpace& space, const Points& z, const Eigen::Vector
 // sqrt(seam_weight / all seam points) (m_a(z) - m_b(z)) at the seam points of one pair of parts. Parameter
 // blocks: part a's offset rotation, translation and latent, then part b's.
 struct SeamCost {
-  SeamSide a, b;
+  const SeamSide *a, *b;  // owned by the Seam, which outlives the problem
   double root_weight;
 
   template <typename T>
   bool operator()(T const* const* p, T* residuals) const {
-    for (Eigen::Index i = 0; i < a.rest.rows(); ++i) {
+    for (Eigen::Index i = 0; i < a->rest.rows(); ++i) {
       T on_a[3], on_b[3];
-      a.move(static_cast<int>(i), p[0], p[1], p[2], on_a);
-      b.move(static_cast<int>(i), p[3], p[4], p[5], on_b);
+      a->move(static_cast<int>(i), p[0], p[1], p[2], on_a);
+      b->move(static_cast<int>(i), p[3], p[4], p[5], on_b);
       for (int c = 0; c < 3; ++c) residuals[3 * i + c] = root_weight * (on_a[c] - on_b[c]);
     }
     return true;
@@ -169,17 +169,21 @@ Points seam_points(const ShapeSpace& a, const ShapeSpace& b, double radius) {
   return points;
 }
 
+// The seam points of two parts and each part's motion of them, computed once per registration.
 struct Seam {
   int a, b;  // indices into the parts
-  Points points;
+  SeamSide on_a, on_b;
 };
 
 std::vector<Seam> find_seams(const std::vector<Part>& parts, double radius) {
   std::vector<Seam> seams;
   for (std::size_t a = 0; a < parts.size(); ++a)
     for (std::size_t b = a + 1; b < parts.size(); ++b) {
-      Points points = seam_points(*parts[a].space, *parts[b].space, radius);
-      if (points.rows() > 0) seams.push_back({static_cast<int>(a), static_cast<int>(b), std::move(points)});
+      const Points points = seam_points(*parts[a].space, *parts[b].space, radius);
+      if (points.rows() == 0) continue;
+      seams.push_back({static_cast<int>(a), static_cast<int>(b),
+                       seam_side(*parts[a].space, points, parts[a].centre),
+                       seam_side(*parts[b].space, points, parts[b].centre)});
     }
   return seams;
 }
@@ -263,13 +267,11 @@ std::vector<Part> describe_parts(const CategoryModel& model, const Points& norma
 void add_seams(ceres::Problem& problem, const std::vector<Part>& parts, const std::vector<Seam>& seams,
                Unknowns& unknowns, double seam_weight) {
   Eigen::Index total = 0;
-  for (const Seam& seam : seams) total += seam.points.rows();
+  for (const Seam& seam : seams) total += seam.on_a.rest.rows();
   if (total == 0 || seam_weight <= 0.0) return;
   for (const Seam& seam : seams) {
-    const Part &a = parts[static_cast<std::size_t>(seam.a)], &b = parts[static_cast<std::size_t>(seam.b)];
     auto* cost = new ceres::DynamicAutoDiffCostFunction<SeamCost, 8>(
-        new SeamCost{seam_side(*a.space, seam.points, a.centre), seam_side(*b.space, seam.points, b.centre),
-                     std::sqrt(seam_weight / static_cast<double>(total))});
+        new SeamCost{&seam.on_a, &seam.on_b, std::sqrt(seam_weight / static_cast<double>(total))});
     std::vector<double*> blocks;
     for (const int p : {seam.a, seam.b}) {
       const auto index = static_cast<std::size_t>(p);
@@ -278,7 +280,7 @@ void add_seams(ceres::Problem& problem, const std::vector<Part>& parts, const st
         blocks.push_back(block);
       for (int size : {3, 3, parts[index].space->dimensions()}) cost->AddParameterBlock(size);
     }
-    cost->SetNumResiduals(static_cast<int>(3 * seam.points.rows()));
+    cost->SetNumResiduals(static_cast<int>(3 * seam.on_a.rest.rows()));
     problem.AddResidualBlock(cost, nullptr, blocks);
   }
 }
