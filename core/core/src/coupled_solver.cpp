@@ -336,6 +336,12 @@ Unknowns start_from(const CategoryModel& model, const SpaceSolution& holistic) {
 
 }  // namespace
 
+std::unique_ptr<ceres::CostFunction> make_part_data_cost(const ShapeSpace& space,
+                                                         const std::vector<WeightedPair>& pairs,
+                                                         double prior_weight, const Eigen::Vector3d& centre) {
+  return std::make_unique<OffsetPartCost>(space, pairs, prior_weight, centre);
+}
+
 std::vector<SearchOutcome> solve_coupled(const CategoryModel& model, const Points& normals,
                                          const Observation& observation, const SpaceSolution& holistic,
                                          const RegistrationSettings& settings) {

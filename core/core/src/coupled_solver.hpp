@@ -16,13 +16,23 @@
 //           W_p(x_p) - c_p) + c_p + d_p is part p's motion of z before the shared object pose (which moves both
 //           sides alike, so the gap is pose-free up to the scale)
 
+#include <memory>
 #include <vector>
 
+#include "moment_cost.hpp"
 #include "partreg/core/category_model.hpp"
 #include "pose_search.hpp"
 #include "space_solver.hpp"
 
 namespace partreg::core::detail {
+
+/// One part's data term (and its latent prior) at the part's effective pose, with exact derivatives: the
+/// MomentCost of `space` chained through the offset pose about `centre` (normalised canonical frame).
+/// Parameter blocks: object rotation (Eigen quaternion x, y, z, w), object translation (3), scale (1),
+/// offset rotation (angle-axis, radians, 3), offset translation (3), latent (q). Exposed for its test.
+std::unique_ptr<ceres::CostFunction> make_part_data_cost(const ShapeSpace& space,
+                                                         const std::vector<WeightedPair>& pairs,
+                                                         double prior_weight, const Eigen::Vector3d& centre);
 
 /// Fits every part of `model` jointly, starting from the holistic fit `holistic` (its pose for the object,
 /// its deformation projected into each part's space for the latents, zero offsets). `normals`: outward
