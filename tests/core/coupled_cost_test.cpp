@@ -1,11 +1,11 @@
-// The coupled variant's data term of one part (core/core/src/coupled_solver.hpp): the moment cost at the part's
-// effective pose, chained to the object's pose and the part's offset. Its value against the explicit sum over
-// the pairs, its Jacobian against central differences.
-#include "coupled_solver.hpp"
-
+// The coupled variant's data term of one part (core/core/src/coupled_solver.hpp): the moment cost at the
+// part's effective pose, chained to the object's pose and the part's offset. Its value against the explicit
+// sum over the pairs, its Jacobian against central differences.
 #include <gtest/gtest.h>
 
 #include <random>
+
+#include "coupled_solver.hpp"
 
 namespace partreg::core::detail {
 namespace {
@@ -61,7 +61,8 @@ double explicit_cost(const Fixture& f, const Parameters& p) {
   double sum = 0.0;
   for (const WeightedPair& pair : f.pairs) {
     const Eigen::Index row = 3 * pair.row;
-    const Eigen::Vector3d y = f.space.canonical.row(pair.row).transpose() + f.space.kernel_mean.segment<3>(row) +
+    const Eigen::Vector3d y = f.space.canonical.row(pair.row).transpose() +
+                              f.space.kernel_mean.segment<3>(row) +
                               f.space.kernel_basis.middleRows<3>(row) * p.latent;
     const Eigen::Vector3d moved =
         p.scale * (p.rotation * (R_p * (y - f.centre) + f.centre + p.offset_translation)) + p.translation;

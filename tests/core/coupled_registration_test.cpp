@@ -32,7 +32,8 @@ Setup make_setup() {
   settings.canonical_points = 600;
   Setup setup;
   setup.model = train_category("mugs", training, {"body", "handle"}, settings);
-  setup.held_out = sample_correspondences(SyntheticCategory::mug, mugs.back().shape_parameters, 1500, 5).points;
+  setup.held_out =
+      sample_correspondences(SyntheticCategory::mug, mugs.back().shape_parameters, 1500, 5).points;
   return setup;
 }
 
@@ -59,10 +60,10 @@ Outcome register_as(Variant variant, const Points& observed) {
   Outcome outcome;
   outcome.result = register_observation(setup().model, observed, settings);
   outcome.gap = seam_gap(setup().model, outcome.result);
-  outcome.symmetric_rms = measure_against_truth(outcome.result.deformed, outcome.result.part,
-                                                setup().model.part_names, observed,
-                                                truth_diagonal(setup().held_out))
-                              .symmetric_rms_per_diagonal;
+  outcome.symmetric_rms =
+      measure_against_truth(outcome.result.deformed, outcome.result.part, setup().model.part_names, observed,
+                            truth_diagonal(setup().held_out))
+          .symmetric_rms_per_diagonal;
   std::cerr << enum_name(variant) << ": seam gap max " << outcome.gap.max << ", mean " << outcome.gap.mean
             << " over " << outcome.gap.points << " boundary points; symmetric RMS " << outcome.symmetric_rms
             << " of the diagonal\n";

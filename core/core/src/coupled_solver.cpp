@@ -32,7 +32,8 @@ struct OffsetPose {
     Eigen::Map<Eigen::Quaternion<T>> combined(out);
     combined = object * offset;
     const Vector c = centre.cast<T>();
-    const Vector moved_pivot = c + Eigen::Map<const Vector>(offset_translation) - offset.toRotationMatrix() * c;
+    const Vector moved_pivot =
+        c + Eigen::Map<const Vector>(offset_translation) - offset.toRotationMatrix() * c;
     Eigen::Map<Vector>(out + 4) =
         scale[0] * (object.toRotationMatrix() * moved_pivot) + Eigen::Map<const Vector>(object_translation);
     return true;
@@ -258,7 +259,8 @@ std::vector<Part> describe_parts(const CategoryModel& model, const Points& norma
     const Eigen::Vector3d centre = space.canonical.colwise().mean().transpose();
     const double radius =
         std::sqrt((space.canonical.rowwise() - centre.transpose()).rowwise().squaredNorm().mean());
-    parts.push_back({&space, centre, radius, normals.rows() ? select_rows(normals, space.point_indices) : Points()});
+    parts.push_back(
+        {&space, centre, radius, normals.rows() ? select_rows(normals, space.point_indices) : Points()});
   }
   return parts;
 }
@@ -294,14 +296,15 @@ double solve_step(const std::vector<Part>& parts, const std::vector<Seam>& seams
   double* translation = unknowns.object.translation.data();
   double* scale = &unknowns.object.scale;
   for (std::size_t p = 0; p < parts.size(); ++p) {
-    problem.AddResidualBlock(new OffsetPartCost(*parts[p].space, pairs[p], settings.objective.prior_weight,
-                                                parts[p].centre),
-                             nullptr,
-                             {rotation, translation, scale, unknowns.offset_rotation[p].data(),
-                              unknowns.offset_translation[p].data(), unknowns.latent[p].data()});
+    problem.AddResidualBlock(
+        new OffsetPartCost(*parts[p].space, pairs[p], settings.objective.prior_weight, parts[p].centre),
+        nullptr,
+        {rotation, translation, scale, unknowns.offset_rotation[p].data(),
+         unknowns.offset_translation[p].data(), unknowns.latent[p].data()});
     problem.AddResidualBlock(new ceres::AutoDiffCostFunction<OffsetPrior, 6, 3, 3>(new OffsetPrior{
                                  std::sqrt(settings.objective.offset_weight), parts[p].radius}),
-                             nullptr, unknowns.offset_rotation[p].data(), unknowns.offset_translation[p].data());
+                             nullptr, unknowns.offset_rotation[p].data(),
+                             unknowns.offset_translation[p].data());
   }
   add_seams(problem, parts, seams, unknowns, settings.objective.seam_weight);
   problem.SetManifold(rotation, new ceres::EigenQuaternionManifold);
@@ -368,7 +371,8 @@ std::vector<SearchOutcome> solve_coupled(const CategoryModel& model, const Point
       break;
     }
     const Unknowns before = unknowns;
-    cost = solve_step(parts, seams, pairs_by_part(model, weighted_pairs(pairs, settings)), unknowns, settings);
+    cost =
+        solve_step(parts, seams, pairs_by_part(model, weighted_pairs(pairs, settings)), unknowns, settings);
     iterations = outer + 1;
     const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     for (std::size_t p = 0; p < parts.size(); ++p) {

@@ -11,10 +11,11 @@
 //   data:   sum over the object's closest-point pairs of the robust weight times the squared distance, each
 //           direction weighed by 1 / its count (as the other variants), every pair going to its point's part
 //   prior:  prior_weight sum_k x_pk^2 / var_pk, per part
-//   offset: offset_weight (|d_p|^2 + rho_p^2 |r_p|^2), r_p the offset's angle-axis, rho_p the part's RMS radius
-//   seam:   seam_weight * the mean over seam points z of |m_a(z) - m_b(z)|^2, where m_p(z) = R_p (z + G(z, C_p)
-//           W_p(x_p) - c_p) + c_p + d_p is part p's motion of z before the shared object pose (which moves both
-//           sides alike, so the gap is pose-free up to the scale)
+//   offset: offset_weight (|d_p|^2 + rho_p^2 |r_p|^2), r_p the offset's angle-axis, rho_p the part's
+//           RMS radius
+//   seam:   seam_weight * the mean over seam points z of |m_a(z) - m_b(z)|^2, where
+//           m_p(z) = R_p (z + G(z, C_p) W_p(x_p) - c_p) + c_p + d_p is part p's motion of z before the shared
+//           object pose (which moves both sides alike, so the gap is pose-free up to the scale)
 
 #include <memory>
 #include <vector>

@@ -151,8 +151,9 @@ std::vector<RegistrationOption> make_options() {
           "coupled: weight of the mean squared gap between parts at their seams (normalised length squared)",
           0.0, 1e6, [](auto& s) -> auto& { return s.objective.seam_weight; }),
       real(
-          "seam-radius", "coupled: canonical points this close to another part's are seam points (normalised length)",
-          0.0, 1.0, [](auto& s) -> auto& { return s.objective.seam_radius; }),
+          "seam-radius",
+          "coupled: canonical points this close to another part's are seam points (normalised length)", 0.0,
+          1.0, [](auto& s) -> auto& { return s.objective.seam_radius; }),
       flag(
           "scale", "also fit a uniform scale", [](auto& s) -> auto& { return s.objective.estimate_scale; }),
       viewpoint(),
