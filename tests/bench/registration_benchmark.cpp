@@ -54,6 +54,12 @@ void run(benchmark::State& state, const std::string& folder, partreg::core::Vari
 
 void BM_KettleHolistic(benchmark::State& state) { run(state, "kettles", partreg::core::Variant::holistic); }
 void BM_KettleHolPart(benchmark::State& state) { run(state, "kettles", partreg::core::Variant::hol_part); }
+// Issue 15's target: the coupled variant, four parts (the holistic search it starts from included).
+void BM_KettleCoupled(benchmark::State& state) { run(state, "kettles", partreg::core::Variant::coupled); }
+// With one start: minus BM_KettleHolisticOneStart, the time of the coupled problem alone.
+void BM_KettleCoupledOneStart(benchmark::State& state) {
+  run(state, "kettles", partreg::core::Variant::coupled, 1);
+}
 void BM_DrillHolistic(benchmark::State& state) { run(state, "drills", partreg::core::Variant::holistic); }
 // One start (the single-start path) and the pose search over 12 yaws (successive halving to 2 finalists).
 void BM_KettleHolisticOneStart(benchmark::State& state) {
@@ -66,6 +72,8 @@ BENCHMARK(BM_KettleHolisticOneStart)->Unit(benchmark::kMillisecond)->UseRealTime
 BENCHMARK(BM_KettleHolisticSearch12)->Unit(benchmark::kMillisecond)->UseRealTime();
 BENCHMARK(BM_KettleHolistic)->Unit(benchmark::kMillisecond)->UseRealTime();
 BENCHMARK(BM_KettleHolPart)->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK(BM_KettleCoupled)->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK(BM_KettleCoupledOneStart)->Unit(benchmark::kMillisecond)->UseRealTime();
 BENCHMARK(BM_DrillHolistic)->Unit(benchmark::kMillisecond)->UseRealTime();
 
 }  // namespace

@@ -21,6 +21,7 @@ std::string usage_message(const std::function<void()>& call) {
 
 TEST(EnumNames, ParsePrintAndListOneTable) {
   EXPECT_EQ(parse_enum<Variant>("hol+part"), Variant::hol_part);
+  EXPECT_EQ(parse_enum<Variant>("coupled"), Variant::coupled);
   EXPECT_EQ(enum_name(Direction::canonical_to_observed), "canonical");
   EXPECT_EQ(enum_choices<Loss>(), "squared | huber | cauchy | trimmed");
   for (const std::string& name : enum_names<Variant>()) EXPECT_EQ(enum_name(parse_enum<Variant>(name)), name);

@@ -10,6 +10,7 @@
 #include "partreg/core/parallel.hpp"
 #include "partreg/core/registration_options.hpp"
 #include "partreg/core/sampling.hpp"
+#include "coupled_solver.hpp"
 #include "pose_search.hpp"
 #include "space_solver.hpp"
 
@@ -188,7 +189,10 @@ RegistrationResult register_observation(const CategoryModel& model, const Points
         detail::starting_poses(centre, model.canonical, observation, part_settings);
     // Parts are independent given their initialisation: solve them in parallel, within the thread budget.
     std::vector<detail::SearchOutcome> parts(model.spaces.size() - 1);
-    parallel_for(
+    if (settings.variant == Variant::coupled)
+      parts = detail::solve_coupled(model, normals, observation, whole, settings);
+    else
+      parallel_for(
         static_cast<Eigen::Index>(parts.size()),
         [&](Eigen::Index begin, Eigen::Index end) {
           for (Eigen::Index i = begin; i < end; ++i) {

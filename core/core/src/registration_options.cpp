@@ -145,6 +145,19 @@ std::vector<RegistrationOption> make_options() {
       real(
           "prior-weight", "weight of the latent's Gaussian prior against the data term", 0.0, 1e6,
           [](auto& s) -> auto& { return s.objective.prior_weight; }),
+      real(
+          "offset-weight",
+          "coupled: weight of the prior keeping each part's rigid offset near zero, per squared normalised "
+          "length it moves the part",
+          0.0, 1e6, [](auto& s) -> auto& { return s.objective.offset_weight; }),
+      real(
+          "seam-weight",
+          "coupled: weight of the mean squared gap between parts at their seams (normalised length squared)",
+          0.0, 1e6, [](auto& s) -> auto& { return s.objective.seam_weight; }),
+      real(
+          "seam-radius",
+          "coupled: canonical points this close to another part's are seam points (normalised length)", 0.0,
+          1.0, [](auto& s) -> auto& { return s.objective.seam_radius; }),
       flag(
           "scale", "also fit a uniform scale", [](auto& s) -> auto& { return s.objective.estimate_scale; }),
       viewpoint(),

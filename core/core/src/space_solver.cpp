@@ -11,12 +11,6 @@
 namespace partreg::core::detail {
 namespace {
 
-struct Pair {
-  int row;                 ///< canonical row of the space
-  Eigen::Vector3d target;  ///< observed point (normalised)
-  double squared_distance;
-};
-
 Points deformed_points(const ShapeSpace& space, const Eigen::VectorXd& latent) {
   return space.deformed(latent);
 }
@@ -29,9 +23,7 @@ void trim(std::vector<Pair>& pairs, double fraction) {
   pairs.resize(keep);
 }
 
-struct Correspondences {
-  std::vector<Pair> from_canonical, from_observed;
-};
+}  // namespace
 
 Correspondences correspond(const Points& posed, const std::vector<bool>& visible,
                            const Observation& observation, const RegistrationSettings& settings) {
@@ -80,8 +72,6 @@ std::vector<WeightedPair> weighted_pairs(const Correspondences& pairs, const Reg
   }
   return all;
 }
-
-}  // namespace
 
 // Which canonical points face the viewpoint under the current pose (all of them without a viewpoint).
 std::vector<bool> visible_rows(const Points& posed, const Points& normals, const Pose& pose,

@@ -6,6 +6,7 @@
 #include <optional>
 #include <vector>
 
+#include "moment_cost.hpp"
 #include "partreg/core/kdtree.hpp"
 #include "partreg/core/registration_settings.hpp"
 #include "partreg/core/shape_space.hpp"
@@ -38,6 +39,27 @@ struct SpaceSolution {
   std::vector<std::pair<Eigen::VectorXd, Pose>> steps;  ///< latent and pose after every outer step
   std::vector<double> step_costs, step_seconds;
 };
+
+/// One closest-point pair of a step.
+struct Pair {
+  int row;                 ///< row of the posed canonical points
+  Eigen::Vector3d target;  ///< observed point (normalised)
+  double squared_distance;
+};
+
+/// A step's pairs, by the direction they were found in (each empty when its direction is not summed).
+struct Correspondences {
+  std::vector<Pair> from_canonical, from_observed;
+};
+
+/// The closest-point pairs between the `visible` rows of `posed` and the observation, in the directions the
+/// objective sums over, trimmed when the loss is trimmed.
+Correspondences correspond(const Points& posed, const std::vector<bool>& visible,
+                           const Observation& observation, const RegistrationSettings& settings);
+
+/// The pairs weighted for one IRLS step: the robust loss's weight at each pair's distance times its
+/// direction's 1 / count.
+std::vector<WeightedPair> weighted_pairs(const Correspondences& pairs, const RegistrationSettings& settings);
 
 /// Which rows of `posed` (a space's posed canonical points) face the viewpoint; all of them without one.
 std::vector<bool> visible_rows(const Points& posed, const Points& normals, const Pose& pose,

@@ -4,7 +4,9 @@
 /// pose that bring the deformed canonical C + G W(x) onto an observed cloud (Eq. 3), with Ceres.
 /// Variants: holistic (one space), partwise (every part in its own space, independently, in parallel) and
 /// hol+part (holistic first; its pose and, projected into each part's space, its deformation initialise the
-/// parts). Choices and the measurements behind the defaults: docs/registration.md.
+/// parts) and coupled (holistic first; then one problem over the object's pose, every part's latent and a
+/// small rigid offset per part, with a seam term holding neighbouring parts together). Choices and the
+/// measurements behind the defaults: docs/registration.md.
 
 #include <Eigen/Geometry>
 #include <optional>

@@ -17,7 +17,10 @@ namespace partreg::core {
 enum class Variant {
   holistic,  ///< one space for the whole object
   partwise,  ///< every part in its own space and pose, independently
-  hol_part   ///< holistic first; its pose and deformation initialise the parts
+  hol_part,  ///< holistic first; its pose and deformation initialise the parts
+  /// holistic first; then one problem over the object's pose, every part's latent and a small rigid offset
+  /// per part, with a seam term that holds neighbouring parts together (docs/registration.md)
+  coupled
 };
 
 /// Which closest points the objective sums over.
@@ -46,6 +49,16 @@ struct ObjectiveSettings {
   double trim_fraction = 0.1;  ///< trimmed loss: share of the worst correspondences dropped each step, [0, 1)
   double prior_weight = 1e-4;  ///< weight of the Gaussian prior sum_k x_k^2 / var_k against the data term
   bool estimate_scale = false;  ///< also fit a uniform scale (bounded below by 0.2)
+  /// Coupled variant: weight of the prior that keeps each part's rigid offset from the object's pose near
+  /// zero, per squared normalised length the offset moves the part by (its translation, and its rotation
+  /// in radians times the part's RMS radius), against the data term's mean squared distance.
+  double offset_weight = 1.0;
+  /// Coupled variant: weight of the seam term, the mean squared distance between the two parts' positions
+  /// of the canonical points near a part boundary (normalised length squared), against the data term.
+  double seam_weight = 10.0;
+  /// Coupled variant: canonical points of a part within this of another part's are seam points (normalised
+  /// length; 0.03 is about one canonical spacing at M = 1000, the radius seam_gap measures at).
+  double seam_radius = 0.03;
 };
 
 /// Where the search starts and how it prunes: every combination of a base rotation (the category frame, and
@@ -97,8 +110,10 @@ struct RegistrationSettings {
 template <>
 struct EnumNames<Variant> {
   static constexpr const char* what = "variant";
-  static constexpr std::array<std::pair<Variant, const char*>, 3> table{
-      {{Variant::holistic, "holistic"}, {Variant::partwise, "partwise"}, {Variant::hol_part, "hol+part"}}};
+  static constexpr std::array<std::pair<Variant, const char*>, 4> table{{{Variant::holistic, "holistic"},
+                                                                         {Variant::partwise, "partwise"},
+                                                                         {Variant::hol_part, "hol+part"},
+                                                                         {Variant::coupled, "coupled"}}};
 };
 
 template <>

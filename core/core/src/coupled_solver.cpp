@@ -1,0 +1,406 @@
+#include "coupled_solver.hpp"
+
+#include <ceres/ceres.h>
+#include <ceres/rotation.h>
+
+#include <chrono>
+#include <cmath>
+
+#include "moment_cost.hpp"
+#include "partreg/core/gaussian_kernel.hpp"
+#include "partreg/core/kdtree.hpp"
+#include "partreg/core/sampling.hpp"
+
+namespace partreg::core::detail {
+namespace {
+
+using RowMajor = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;
+
+// The effective pose of a part, [quaternion (x, y, z, w) ; translation], from the object's pose and the
+// part's offset (see the header). Templated so that Ceres differentiates it exactly.
+struct OffsetPose {
+  Eigen::Vector3d centre;  // the part's canonical centroid c_p, the offset's pivot
+
+  template <typename T>
+  bool operator()(const T* object_rotation, const T* object_translation, const T* scale,
+                  const T* offset_rotation, const T* offset_translation, T* out) const {
+    using Vector = Eigen::Matrix<T, 3, 1>;
+    const Eigen::Map<const Eigen::Quaternion<T>> object(object_rotation);
+    T wxyz[4];
+    ceres::AngleAxisToQuaternion(offset_rotation, wxyz);
+    const Eigen::Quaternion<T> offset(wxyz[0], wxyz[1], wxyz[2], wxyz[3]);
+    Eigen::Map<Eigen::Quaternion<T>> combined(out);
+    combined = object * offset;
+    const Vector c = centre.cast<T>();
+    const Vector moved_pivot =
+        c + Eigen::Map<const Vector>(offset_translation) - offset.toRotationMatrix() * c;
+    Eigen::Map<Vector>(out + 4) =
+        scale[0] * (object.toRotationMatrix() * moved_pivot) + Eigen::Map<const Vector>(object_translation);
+    return true;
+  }
+};
+using OffsetPoseCost = ceres::AutoDiffCostFunction<OffsetPose, 7, 4, 3, 1, 3, 3>;
+
+// One part's data term: its space's MomentCost at the part's effective pose, chained to the object's pose
+// and the offset. Parameter blocks: object rotation (4), translation (3), scale (1), offset rotation
+// (angle-axis, 3), offset translation (3), latent (q).
+class OffsetPartCost : public ceres::CostFunction {
+ public:
+  OffsetPartCost(const ShapeSpace& space, const std::vector<WeightedPair>& pairs, double prior_weight,
+                 const Eigen::Vector3d& centre)
+      : moment_(space, pairs, prior_weight), pose_(new OffsetPose{centre}) {
+    set_num_residuals(moment_.num_residuals());
+    *mutable_parameter_block_sizes() = {4, 3, 1, 3, 3, space.dimensions()};
+  }
+
+  bool Evaluate(double const* const* parameters, double* residuals, double** jacobians) const override {
+    static constexpr int kSizes[5] = {4, 3, 1, 3, 3};
+    double effective[7], d_rotation[28], d_translation[21], d_scale[7], d_offset_rotation[21],
+        d_offset_translation[21];
+    double* pose_jacobians[5] = {d_rotation, d_translation, d_scale, d_offset_rotation, d_offset_translation};
+    if (!pose_.Evaluate(parameters, effective, jacobians ? pose_jacobians : nullptr)) return false;
+    const double* inner[4] = {effective, effective + 4, parameters[2], parameters[5]};
+    if (!jacobians) return moment_.Evaluate(inner, residuals, nullptr);
+    const int rows = num_residuals();
+    RowMajor by_pose(rows, 7), by_scale(rows, 1);
+    RowMajor by_translation(rows, 3);
+    RowMajor by_rotation(rows, 4);
+    double* inner_jacobians[4] = {by_rotation.data(), by_translation.data(), by_scale.data(), jacobians[5]};
+    if (!moment_.Evaluate(inner, residuals, inner_jacobians)) return false;
+    by_pose << by_rotation, by_translation;
+    for (int b = 0; b < 5; ++b) {
+      if (!jacobians[b]) continue;
+      Eigen::Map<RowMajor> J(jacobians[b], rows, kSizes[b]);
+      J = by_pose * Eigen::Map<const RowMajor>(pose_jacobians[b], 7, kSizes[b]);
+      if (b == 2) J += by_scale;  // the scale also multiplies the deformed points directly
+    }
+    return true;
+  }
+
+ private:
+  MomentCost moment_;
+  OffsetPoseCost pose_;
+};
+
+// The prior on one part's offset: sqrt(offset_weight) (rho r, d).
+struct OffsetPrior {
+  double root_weight, radius;
+  template <typename T>
+  bool operator()(const T* rotation, const T* translation, T* out) const {
+    for (int i = 0; i < 3; ++i) {
+      out[i] = root_weight * radius * rotation[i];
+      out[3 + i] = root_weight * translation[i];
+    }
+    return true;
+  }
+};
+
+// One part's motion m_p(z) of given points z before the object pose, linear in the latent:
+// m_p(z) = R_p (rest + basis x_p) + c_p + d_p with rest = z + G(z, C_p) W_mean - c_p.
+struct SeamSide {
+  Points rest;            // N x 3
+  Eigen::MatrixXd basis;  // 3N x q, row 3 i + a: component a at point i per unit of each latent
+  Eigen::Vector3d centre;
+
+  template <typename T>
+  void move(int i, const T* rotation, const T* translation, const T* latent, T* out) const {
+    T v[3];
+    for (int a = 0; a < 3; ++a) {
+      v[a] = T(rest(i, a));
+      for (Eigen::Index k = 0; k < basis.cols(); ++k) v[a] += basis(3 * i + a, k) * latent[k];
+    }
+    ceres::AngleAxisRotatePoint(rotation, v, out);
+    for (int a = 0; a < 3; ++a) out[a] += centre[a] + translation[a];
+  }
+};
+
+SeamSide seam_side(const ShapeSpace& space, const Points& z, const Eigen::Vector3d& centre) {
+  const Eigen::MatrixXd G = gaussian_kernel(z, space.canonical, space.beta);
+  const auto field = [&](const double* vectorised) {
+    return Points(G * Eigen::Map<const Points>(vectorised, space.point_count(), 3));
+  };
+  SeamSide side;
+  side.centre = centre;
+  side.rest = (z + field(space.mean.data())).rowwise() - centre.transpose();
+  side.basis.resize(3 * z.rows(), space.dimensions());
+  for (int k = 0; k < space.dimensions(); ++k) {
+    const Points moved = field(space.basis.col(k).data());
+    side.basis.col(k) = Eigen::Map<const Eigen::VectorXd>(moved.data(), moved.size());  // row-major: 3 i + a
+  }
+  return side;
+}
+
+// sqrt(seam_weight / all seam points) (m_a(z) - m_b(z)) at the seam points of one pair of parts. Parameter
+// blocks: part a's offset rotation, translation and latent, then part b's.
+struct SeamCost {
+  const SeamSide *a, *b;  // owned by the Seam, which outlives the problem
+  double root_weight;
+
+  template <typename T>
+  bool operator()(T const* const* p, T* residuals) const {
+    for (Eigen::Index i = 0; i < a->rest.rows(); ++i) {
+      T on_a[3], on_b[3];
+      a->move(static_cast<int>(i), p[0], p[1], p[2], on_a);
+      b->move(static_cast<int>(i), p[3], p[4], p[5], on_b);
+      for (int c = 0; c < 3; ++c) residuals[3 * i + c] = root_weight * (on_a[c] - on_b[c]);
+    }
+    return true;
+  }
+};
+
+// What the solver knows about each part space.
+struct Part {
+  const ShapeSpace* space;
+  Eigen::Vector3d centre;  // canonical centroid (normalised)
+  double radius;           // RMS distance of the canonical points from it
+  Points normals;          // of the space's canonical points; empty without a viewpoint
+};
+
+// The canonical points of part `a` within `radius` of part `b`'s, and those of `b` within it of `a`'s.
+Points seam_points(const ShapeSpace& a, const ShapeSpace& b, double radius) {
+  std::vector<Eigen::RowVector3d> found;
+  for (const auto& [own, other] : {std::pair{&a, &b}, std::pair{&b, &a}}) {
+    const KdTree tree(other->canonical);
+    for (Eigen::Index i = 0; i < own->canonical.rows(); ++i)
+      if (tree.nearest(own->canonical.row(i).transpose()).second <= radius * radius)
+        found.push_back(own->canonical.row(i));
+  }
+  Points points(static_cast<Eigen::Index>(found.size()), 3);
+  for (std::size_t i = 0; i < found.size(); ++i) points.row(static_cast<Eigen::Index>(i)) = found[i];
+  return points;
+}
+
+// The seam points of two parts and each part's motion of them, computed once per registration.
+struct Seam {
+  int a, b;  // indices into the parts
+  SeamSide on_a, on_b;
+};
+
+std::vector<Seam> find_seams(const std::vector<Part>& parts, double radius) {
+  std::vector<Seam> seams;
+  for (std::size_t a = 0; a < parts.size(); ++a)
+    for (std::size_t b = a + 1; b < parts.size(); ++b) {
+      const Points points = seam_points(*parts[a].space, *parts[b].space, radius);
+      if (points.rows() == 0) continue;
+      seams.push_back({static_cast<int>(a), static_cast<int>(b),
+                       seam_side(*parts[a].space, points, parts[a].centre),
+                       seam_side(*parts[b].space, points, parts[b].centre)});
+    }
+  return seams;
+}
+
+// Everything the joint problem solves for.
+struct Unknowns {
+  Pose object;
+  std::vector<Eigen::Vector3d> offset_rotation, offset_translation;  // angle-axis (rad), normalised length
+  std::vector<Eigen::VectorXd> latent;
+
+  Pose part_pose(const Part& part, std::size_t p) const {
+    double effective[7];
+    OffsetPose{part.centre}(object.rotation.coeffs().data(), object.translation.data(), &object.scale,
+                            offset_rotation[p].data(), offset_translation[p].data(), effective);
+    Pose pose;
+    pose.rotation = Eigen::Quaterniond(effective[3], effective[0], effective[1], effective[2]);
+    pose.translation = Eigen::Vector3d(effective[4], effective[5], effective[6]);
+    pose.scale = object.scale;
+    return pose;
+  }
+
+  // How far everything moved since `before` (radians and normalised lengths, latents in their own units).
+  double distance_to(const Unknowns& before) const {
+    double moved = (object.translation - before.object.translation).norm() +
+                   object.rotation.angularDistance(before.object.rotation);
+    for (std::size_t p = 0; p < latent.size(); ++p)
+      moved += (latent[p] - before.latent[p]).norm() +
+               (offset_rotation[p] - before.offset_rotation[p]).norm() +
+               (offset_translation[p] - before.offset_translation[p]).norm();
+    return moved;
+  }
+};
+
+// The object's posed deformed canonical points in holistic row order, and which face the viewpoint.
+Points assemble(const CategoryModel& model, const std::vector<Part>& parts, const Unknowns& unknowns,
+                const Observation& observation, std::vector<bool>& visible) {
+  Points posed(model.canonical.rows(), 3);
+  visible.assign(static_cast<std::size_t>(model.canonical.rows()), true);
+  for (std::size_t p = 0; p < parts.size(); ++p) {
+    const Pose pose = unknowns.part_pose(parts[p], p);
+    const Points own = pose.apply(parts[p].space->deformed(unknowns.latent[p]));
+    const std::vector<bool> own_visible = visible_rows(own, parts[p].normals, pose, observation.viewpoint);
+    const std::vector<int>& rows = parts[p].space->point_indices;
+    for (std::size_t i = 0; i < rows.size(); ++i) {
+      posed.row(rows[i]) = own.row(static_cast<Eigen::Index>(i));
+      visible[static_cast<std::size_t>(rows[i])] = own_visible[i];
+    }
+  }
+  return posed;
+}
+
+// The step's weighted pairs of the whole object, handed to the parts (rows become each space's own rows).
+std::vector<std::vector<WeightedPair>> pairs_by_part(const CategoryModel& model,
+                                                     const std::vector<WeightedPair>& pairs) {
+  std::vector<int> own_row(static_cast<std::size_t>(model.canonical.rows()), 0);
+  for (std::size_t s = 1; s < model.spaces.size(); ++s)
+    for (std::size_t i = 0; i < model.spaces[s].point_indices.size(); ++i)
+      own_row[static_cast<std::size_t>(model.spaces[s].point_indices[i])] = static_cast<int>(i);
+  std::vector<std::vector<WeightedPair>> by_part(model.spaces.size() - 1);
+  for (const WeightedPair& pair : pairs) {
+    WeightedPair own = pair;
+    own.row = own_row[static_cast<std::size_t>(pair.row)];
+    by_part[static_cast<std::size_t>(model.canonical_part[pair.row])].push_back(own);
+  }
+  return by_part;
+}
+
+std::vector<Part> describe_parts(const CategoryModel& model, const Points& normals) {
+  std::vector<Part> parts;
+  for (std::size_t s = 1; s < model.spaces.size(); ++s) {
+    const ShapeSpace& space = model.spaces[s];
+    const Eigen::Vector3d centre = space.canonical.colwise().mean().transpose();
+    const double radius =
+        std::sqrt((space.canonical.rowwise() - centre.transpose()).rowwise().squaredNorm().mean());
+    parts.push_back(
+        {&space, centre, radius, normals.rows() ? select_rows(normals, space.point_indices) : Points()});
+  }
+  return parts;
+}
+
+// Adds the seam terms; their parameter blocks are the offsets and latents in `unknowns`.
+void add_seams(ceres::Problem& problem, const std::vector<Part>& parts, const std::vector<Seam>& seams,
+               Unknowns& unknowns, double seam_weight) {
+  Eigen::Index total = 0;
+  for (const Seam& seam : seams) total += seam.on_a.rest.rows();
+  if (total == 0 || seam_weight <= 0.0) return;
+  for (const Seam& seam : seams) {
+    auto* cost = new ceres::DynamicAutoDiffCostFunction<SeamCost, 8>(
+        new SeamCost{&seam.on_a, &seam.on_b, std::sqrt(seam_weight / static_cast<double>(total))});
+    std::vector<double*> blocks;
+    for (const int p : {seam.a, seam.b}) {
+      const auto index = static_cast<std::size_t>(p);
+      for (double* block : {unknowns.offset_rotation[index].data(), unknowns.offset_translation[index].data(),
+                            unknowns.latent[index].data()})
+        blocks.push_back(block);
+      for (int size : {3, 3, parts[index].space->dimensions()}) cost->AddParameterBlock(size);
+    }
+    cost->SetNumResiduals(static_cast<int>(3 * seam.on_a.rest.rows()));
+    problem.AddResidualBlock(cost, nullptr, blocks);
+  }
+}
+
+// One outer step's problem: the data term of every part at the step's pairs, the priors and the seams.
+double solve_step(const std::vector<Part>& parts, const std::vector<Seam>& seams,
+                  const std::vector<std::vector<WeightedPair>>& pairs, Unknowns& unknowns,
+                  const RegistrationSettings& settings) {
+  ceres::Problem problem;
+  double* rotation = unknowns.object.rotation.coeffs().data();
+  double* translation = unknowns.object.translation.data();
+  double* scale = &unknowns.object.scale;
+  for (std::size_t p = 0; p < parts.size(); ++p) {
+    problem.AddResidualBlock(
+        new OffsetPartCost(*parts[p].space, pairs[p], settings.objective.prior_weight, parts[p].centre),
+        nullptr,
+        {rotation, translation, scale, unknowns.offset_rotation[p].data(),
+         unknowns.offset_translation[p].data(), unknowns.latent[p].data()});
+    problem.AddResidualBlock(new ceres::AutoDiffCostFunction<OffsetPrior, 6, 3, 3>(new OffsetPrior{
+                                 std::sqrt(settings.objective.offset_weight), parts[p].radius}),
+                             nullptr, unknowns.offset_rotation[p].data(),
+                             unknowns.offset_translation[p].data());
+  }
+  add_seams(problem, parts, seams, unknowns, settings.objective.seam_weight);
+  problem.SetManifold(rotation, new ceres::EigenQuaternionManifold);
+  if (!settings.objective.estimate_scale)
+    problem.SetParameterBlockConstant(scale);
+  else
+    problem.SetParameterLowerBound(scale, 0, 0.2);
+
+  ceres::Solver::Options options;
+  options.linear_solver_type = ceres::DENSE_NORMAL_CHOLESKY;  // 7 + P (6 + q) unknowns
+  options.max_num_iterations = settings.convergence.inner_iterations;
+  options.num_threads = 1;
+  options.logging_type = ceres::SILENT;
+  ceres::Solver::Summary summary;
+  ceres::Solve(options, &problem, &summary);
+  return summary.final_cost;
+}
+
+Unknowns start_from(const CategoryModel& model, const SpaceSolution& holistic) {
+  const ShapeSpace& whole = model.holistic();
+  const Points displacement = whole.deformed(holistic.latent) - whole.canonical;
+  Unknowns unknowns;
+  unknowns.object = holistic.pose;
+  for (std::size_t s = 1; s < model.spaces.size(); ++s) {
+    const ShapeSpace& space = model.spaces[s];
+    unknowns.latent.push_back(space.project_displacement(select_rows(displacement, space.point_indices)));
+    unknowns.offset_rotation.push_back(Eigen::Vector3d::Zero());
+    unknowns.offset_translation.push_back(Eigen::Vector3d::Zero());
+  }
+  return unknowns;
+}
+
+}  // namespace
+
+std::unique_ptr<ceres::CostFunction> make_part_data_cost(const ShapeSpace& space,
+                                                         const std::vector<WeightedPair>& pairs,
+                                                         double prior_weight, const Eigen::Vector3d& centre) {
+  return std::make_unique<OffsetPartCost>(space, pairs, prior_weight, centre);
+}
+
+std::vector<SearchOutcome> solve_coupled(const CategoryModel& model, const Points& normals,
+                                         const Observation& observation, const SpaceSolution& holistic,
+                                         const RegistrationSettings& settings) {
+  const auto start = std::chrono::steady_clock::now();
+  const std::vector<Part> parts = describe_parts(model, normals);
+  const std::vector<Seam> seams = find_seams(parts, settings.objective.seam_radius);
+  Unknowns unknowns = start_from(model, holistic);
+  std::vector<SearchOutcome> outcomes(parts.size());
+  for (SearchOutcome& outcome : outcomes) {
+    outcome.hypotheses = 1;
+    outcome.runner_up = std::numeric_limits<double>::infinity();
+    outcome.best_start = holistic.pose;
+  }
+  double previous = std::numeric_limits<double>::infinity();
+  bool converged = false, had_pairs = true;
+  int iterations = 0;
+  double cost = 0.0;
+  for (int outer = 0; outer < settings.convergence.outer_iterations; ++outer) {
+    std::vector<bool> visible;
+    const Points posed = assemble(model, parts, unknowns, observation, visible);
+    const Correspondences pairs = correspond(posed, visible, observation, settings);
+    if (pairs.from_canonical.empty() && pairs.from_observed.empty()) {
+      had_pairs = false;
+      break;
+    }
+    const Unknowns before = unknowns;
+    cost =
+        solve_step(parts, seams, pairs_by_part(model, weighted_pairs(pairs, settings)), unknowns, settings);
+    iterations = outer + 1;
+    const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    for (std::size_t p = 0; p < parts.size(); ++p) {
+      SpaceSolution& solution = outcomes[p].best;
+      solution.steps.emplace_back(unknowns.latent[p], unknowns.part_pose(parts[p], p));
+      solution.step_costs.push_back(cost);
+      solution.step_seconds.push_back(seconds);
+    }
+    // Settled as a single space's fit is: the cost or the unknowns stop moving.
+    if (std::abs(previous - cost) <= settings.convergence.tolerance * std::max(cost, 1e-12) ||
+        unknowns.distance_to(before) < settings.convergence.tolerance) {
+      converged = true;
+      break;
+    }
+    previous = cost;
+  }
+  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  for (std::size_t p = 0; p < parts.size(); ++p) {
+    SpaceSolution& solution = outcomes[p].best;
+    solution.latent = unknowns.latent[p];
+    solution.pose = unknowns.part_pose(parts[p], p);
+    solution.cost = cost;
+    solution.iterations = iterations;
+    solution.converged = converged;
+    solution.had_pairs = had_pairs;
+    solution.seconds = seconds;
+  }
+  return outcomes;
+}
+
+}  // namespace partreg::core::detail

@@ -1,0 +1,47 @@
+#pragma once
+// The coupled part registration (internal to partreg_core): one Ceres problem over the object's pose, every
+// part's latent and a small rigid offset per part from that pose, with a prior keeping the offsets near zero
+// and a seam term holding neighbouring parts together.
+//
+// Part p moves its canonical points y (deformed by its space) to s R0 (R_p (y - c_p) + c_p + d_p) + t0:
+// the object's pose (R0, t0, s) after the part's offset (R_p, d_p), which turns about the part's canonical
+// centroid c_p so that its rotation and translation stay apart. As a similarity that is the pose
+// (R0 R_p, s R0 (c_p + d_p - R_p c_p) + t0, s), so each part's data term is the MomentCost of its space at
+// that pose. The objective (normalised lengths):
+//   data:   sum over the object's closest-point pairs of the robust weight times the squared distance, each
+//           direction weighed by 1 / its count (as the other variants), every pair going to its point's part
+//   prior:  prior_weight sum_k x_pk^2 / var_pk, per part
+//   offset: offset_weight (|d_p|^2 + rho_p^2 |r_p|^2), r_p the offset's angle-axis, rho_p the part's
+//           RMS radius
+//   seam:   seam_weight * the mean over seam points z of |m_a(z) - m_b(z)|^2, where
+//           m_p(z) = R_p (z + G(z, C_p) W_p(x_p) - c_p) + c_p + d_p is part p's motion of z before the shared
+//           object pose (which moves both sides alike, so the gap is pose-free up to the scale)
+
+#include <memory>
+#include <vector>
+
+#include "moment_cost.hpp"
+#include "partreg/core/category_model.hpp"
+#include "pose_search.hpp"
+#include "space_solver.hpp"
+
+namespace partreg::core::detail {
+
+/// One part's data term (and its latent prior) at the part's effective pose, with exact derivatives: the
+/// MomentCost of `space` chained through the offset pose about `centre` (normalised canonical frame).
+/// Parameter blocks: object rotation (Eigen quaternion x, y, z, w), object translation (3), scale (1),
+/// offset rotation (angle-axis, radians, 3), offset translation (3), latent (q). Exposed for its test.
+std::unique_ptr<ceres::CostFunction> make_part_data_cost(const ShapeSpace& space,
+                                                         const std::vector<WeightedPair>& pairs,
+                                                         double prior_weight, const Eigen::Vector3d& centre);
+
+/// Fits every part of `model` jointly, starting from the holistic fit `holistic` (its pose for the object,
+/// its deformation projected into each part's space for the latents, zero offsets). `normals`: outward
+/// normals of the holistic canonical points (used only with a viewpoint). Returns one outcome per part
+/// space (model.spaces[1..]), each with its part's effective pose (object pose then offset) and latent, the
+/// joint cost and the joint steps.
+std::vector<SearchOutcome> solve_coupled(const CategoryModel& model, const Points& normals,
+                                         const Observation& observation, const SpaceSolution& holistic,
+                                         const RegistrationSettings& settings);
+
+}  // namespace partreg::core::detail

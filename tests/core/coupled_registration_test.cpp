@@ -1,0 +1,95 @@
+// The coupled part variant (issue 15): one problem over the object's pose, the parts' latents and small
+// rigid offsets, with a seam term. Synthetic mugs with ground truth, fixed seeds.
+
+#include <gtest/gtest.h>
+
+#include <map>
+
+#include "partreg/core/deformation.hpp"
+#include "partreg/core/registration.hpp"
+#include "partreg/core/synthetic.hpp"
+#include "partreg/core/training.hpp"
+#include "partreg/core/truth_errors.hpp"
+#include "support/test_shapes.hpp"
+
+namespace partreg::core {
+namespace {
+
+struct Setup {
+  CategoryModel model;
+  Points held_out;  // the held-out mug's dense samples (data units, its own frame)
+};
+
+// Nine synthetic mugs train the model (default floor of points per part); the tenth is held out.
+Setup make_setup() {
+  const std::vector<SyntheticInstance> mugs = make_synthetic_category(SyntheticCategory::mug, 10, 21);
+  std::vector<TrainingInstance> training;
+  for (std::size_t i = 0; i + 1 < mugs.size(); ++i) {
+    const auto samples = sample_correspondences(SyntheticCategory::mug, mugs[i].shape_parameters, 1500, 5);
+    training.push_back({mugs[i].name, samples.points, samples.part, {}, {}});
+  }
+  TrainingSettings settings;
+  settings.canonical_points = 600;
+  Setup setup;
+  setup.model = train_category("mugs", training, {"body", "handle"}, settings);
+  setup.held_out =
+      sample_correspondences(SyntheticCategory::mug, mugs.back().shape_parameters, 1500, 5).points;
+  return setup;
+}
+
+const Setup& setup() {
+  static const Setup instance = make_setup();
+  return instance;
+}
+
+// The held-out mug turned by 0.3 rad about a tilted axis and moved by 3% of its diagonal.
+Points observed_mug() {
+  const Eigen::Matrix3d R = testing::rotation(0.3, {1.0, 1.0, 1.0});
+  return (setup().held_out * R.transpose()).rowwise() + Eigen::RowVector3d(0.004, -0.003, 0.002);
+}
+
+struct Outcome {
+  SeamGap gap;
+  double symmetric_rms = 0.0;  // per diagonal of the truth
+  RegistrationResult result;
+};
+
+Outcome register_as(Variant variant, const Points& observed) {
+  RegistrationSettings settings;
+  settings.variant = variant;
+  Outcome outcome;
+  outcome.result = register_observation(setup().model, observed, settings);
+  outcome.gap = seam_gap(setup().model, outcome.result);
+  outcome.symmetric_rms =
+      measure_against_truth(outcome.result.deformed, outcome.result.part, setup().model.part_names, observed,
+                            truth_diagonal(setup().held_out))
+          .symmetric_rms_per_diagonal;
+  std::cerr << enum_name(variant) << ": seam gap max " << outcome.gap.max << ", mean " << outcome.gap.mean
+            << " over " << outcome.gap.points << " boundary points; symmetric RMS " << outcome.symmetric_rms
+            << " of the diagonal\n";
+  return outcome;
+}
+
+TEST(CoupledRegistration, TheHandleStaysAttachedWherePartwiseComesApart) {
+  const Points observed = observed_mug();
+  std::map<Variant, Outcome> outcomes;
+  for (Variant variant : {Variant::holistic, Variant::partwise, Variant::hol_part, Variant::coupled})
+    outcomes[variant] = register_as(variant, observed);
+  const Outcome& coupled = outcomes[Variant::coupled];
+  const Outcome& partwise = outcomes[Variant::partwise];
+  ASSERT_GT(coupled.gap.points, 10);
+  // The issue's target, under 0.5% of the diagonal, on the mean over the boundary points (measured 0.38%;
+  // the largest gap is 0.72%). Partwise's parts come apart by ten times that (measured 4.3%, 10.7% at most).
+  EXPECT_LT(coupled.gap.mean, 0.005);
+  EXPECT_LT(coupled.gap.max, 0.01);
+  EXPECT_GT(partwise.gap.mean, 0.005);
+  EXPECT_GT(partwise.gap.max, 0.01);
+  // Attached without giving up the fit (symmetric RMS measured 1.58% against holistic 2.27%, partwise 2.26%,
+  // hol+part 1.57%): a coupling that merely froze the parts at the holistic fit would fail the first.
+  EXPECT_LT(coupled.symmetric_rms, 0.8 * outcomes[Variant::holistic].symmetric_rms);
+  EXPECT_LT(coupled.symmetric_rms, 0.8 * partwise.symmetric_rms);
+  EXPECT_LT(coupled.symmetric_rms, 1.1 * outcomes[Variant::hol_part].symmetric_rms);
+}
+
+}  // namespace
+}  // namespace partreg::core
