@@ -48,7 +48,7 @@ void check_instances(const std::vector<TrainingInstance>& instances,
 // Counts the steps of training and tells the caller after each one.
 class StepCounter {
  public:
-  StepCounter(int total, const TrainingProgressCallback& callback) : total_(total), callback_(callback) {}
+  StepCounter(std::size_t total, const TrainingProgressCallback& callback) : total_(total), callback_(callback) {}
   bool wanted() const { return static_cast<bool>(callback_); }
   void step(const std::string& line) {
     ++done_;
@@ -56,8 +56,8 @@ class StepCounter {
   }
 
  private:
-  int done_ = 0;
-  int total_ = 0;
+  std::size_t done_ = 0;
+  std::size_t total_ = 0;
   const TrainingProgressCallback& callback_;
 };
 
@@ -276,7 +276,7 @@ CategoryModel train_category(const std::string& category, const std::vector<Trai
     throw InputError("the canonical instance '" + canonical.name + "' has no part labels");
 
   const int spaces = 1 + static_cast<int>(part_names.size());
-  StepCounter progress(static_cast<int>(instances.size()) * spaces, steps);
+  StepCounter progress(instances.size() * static_cast<std::size_t>(spaces), steps);
   CategoryModel model;
   model.category = category;
   model.part_names = part_names;

@@ -78,8 +78,9 @@ struct EvalRow {
   double seconds = 0.0;  ///< registration time (a baseline's: its alignment and scoring)
 };
 
-/// Progress: rows done, rows planned, and a line worth logging (empty when there is none).
-using EvalProgress = std::function<void(std::size_t done, std::size_t total, const std::string& line)>;
+/// Progress (core/progress.hpp): rows done, rows planned, and a line worth logging (empty when there is
+/// none). The report after a fold's training has `aside` set: time-left estimates leave training out.
+using EvalProgress = core::ProgressListener;
 
 /// Which instances are tested (shard applied), in order; InputError when the category has too few instances
 /// for the protocol (fewer than 3, or fewer than 2 left to train on in a fold).

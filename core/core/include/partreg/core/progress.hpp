@@ -1,0 +1,33 @@
+#pragma once
+/// \file
+/// How a long computation (training, CPD, evaluation) tells its caller how far it is. The library only calls
+/// a ProgressListener; front ends decide what to draw: the command line a bar with the time left on a
+/// terminal or plain lines in a log (app/partreg/commands/console.hpp), the window a progress bar
+/// (ui::JobProgress).
+
+#include <cstddef>
+#include <functional>
+#include <string>
+
+namespace partreg::core {
+
+/// One report: `done` of `total` steps of the same kind finished, and what the last one did.
+struct Progress {
+  std::size_t done = 0;   ///< steps finished
+  std::size_t total = 0;  ///< steps planned; 0 while unknown. A bound, not a promise, where `bounded` is set
+  std::string line;       ///< a line worth logging about the last step; empty for a plain count
+  /// The total is only an upper bound (CPD's iteration cap): the computation may end before it.
+  bool bounded = false;
+  /// Time since the previous report went into work that is not one of these steps (eval training a fold):
+  /// a time-left estimate should not count it towards the time per step.
+  bool aside = false;
+  /// done / total in [0, 1] (0 while total is 0).
+  double fraction() const { return total > 0 ? static_cast<double>(done) / static_cast<double>(total) : 0.0; }
+};
+
+/// Called after each step. The library calls it on one thread at a time (callers of parallel work
+/// serialise their reports), not always the thread that started the computation. An exception thrown from
+/// it ends the computation and propagates (the window stops a training nobody waits for this way).
+using ProgressListener = std::function<void(const Progress&)>;
+
+}  // namespace partreg::core
