@@ -41,7 +41,7 @@ SelectType=select/cons_tres
 SelectTypeParameters=CR_Core
 ReturnToService=2
 # A job whose dependency can no longer be met (a failed shard before the merge) is cancelled, not left
-# pending: `sbatch --wait` on it then returns.
+# pending: sbatch --wait on it then returns.
 DependencyParameters=kill_invalid_depend
 MpiDefault=none
 NodeName=$host CPUs=$(nproc) RealMemory=$memory State=UNKNOWN
@@ -57,6 +57,7 @@ stop() {
 }
 
 run() {
+  slurm_dir=$1  # global: the EXIT trap stops the daemons after this function has returned
   local dir=$1
   shift
   [ -e "$dir" ] && { echo "$0: $dir exists; give a new folder" >&2; return 2; }
@@ -68,7 +69,7 @@ run() {
     mkdir -p /run/munge && chown munge:munge /run/munge 2>/dev/null || true
     munged --force --pid-file="$dir/munged.pid" 2>/dev/null || { echo "$0: munged did not start" >&2; return 1; }
   fi
-  trap 'stop "$dir"' EXIT
+  trap 'stop "$slurm_dir"' EXIT
   slurmctld -c && slurmd -c
   local waited=0
   until sinfo -h -o %T 2>/dev/null | grep -q idle; do

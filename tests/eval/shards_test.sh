@@ -9,7 +9,7 @@ work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
 
 "$partreg" synth mug --out "$work/mugs" --instances 4 --seed 3 --correspondences 300 --quiet
-options=(--protocol quick --variants holistic --folds 2 --levels 1,5 --quiet)
+options=(--protocol quick --variants holistic --folds 2 --levels 3 --quiet)
 "$partreg" eval "$work/mugs" --out "$work/whole" --threads 2 "${options[@]}"
 case $scheduler in
   parallel)
