@@ -45,21 +45,8 @@ void check_instances(const std::vector<TrainingInstance>& instances,
   }
 }
 
-// Counts the steps of training and tells the caller after each one.
-class StepCounter {
- public:
-  StepCounter(std::size_t total, const TrainingProgressCallback& callback) : total_(total), callback_(callback) {}
-  bool wanted() const { return static_cast<bool>(callback_); }
-  void step(const std::string& line) {
-    ++done_;
-    if (callback_) callback_(TrainingProgress{done_, total_, line});
-  }
-
- private:
-  std::size_t done_ = 0;
-  std::size_t total_ = 0;
-  const TrainingProgressCallback& callback_;
-};
+// Training's steps (CPDs and PCA-EMs), reported to the caller after each one.
+using StepCounter = ProgressCounter;
 
 struct CpdRun {
   Points weights;

@@ -7,6 +7,7 @@
 
 #include <cstddef>
 #include <functional>
+#include <mutex>
 #include <string>
 
 namespace partreg::core {
@@ -29,5 +30,27 @@ struct Progress {
 /// serialise their reports), not always the thread that started the computation. An exception thrown from
 /// it ends the computation and propagates (the window stops a training nobody waits for this way).
 using ProgressListener = std::function<void(const Progress&)>;
+
+/// Counts the steps of a computation with a known number of them and reports each to a listener (if any).
+/// step() may be called from several threads: reports go out one at a time, counted in the order they do.
+class ProgressCounter {
+ public:
+  /// `listener` must outlive the counter.
+  ProgressCounter(std::size_t total, const ProgressListener& listener) : total_(total), listener_(listener) {}
+  /// Whether anyone listens (so that callers build lines only when they are read).
+  bool wanted() const { return static_cast<bool>(listener_); }
+  /// One more step done; `line` says what it did.
+  void step(const std::string& line) {
+    const std::lock_guard<std::mutex> lock(mutex_);
+    ++done_;
+    if (listener_) listener_(Progress{done_, total_, line});
+  }
+
+ private:
+  std::mutex mutex_;
+  std::size_t done_ = 0;
+  const std::size_t total_;
+  const ProgressListener& listener_;
+};
 
 }  // namespace partreg::core
