@@ -4,6 +4,7 @@
 #include <array>
 #include <cstdio>
 #include <fstream>
+#include <nlohmann/json.hpp>
 
 #include "partreg/io/model_file.hpp"
 #include "support/run_partreg.hpp"
@@ -134,6 +135,19 @@ TEST_F(Cli, RegisterWritesItsOutputsAndRefusesBadInput) {
   const std::string text{std::istreambuf_iterator<char>(json), {}};
   for (const char* key : {"T_observed_canonical", "latent", "eq5_per_diagonal2", "p90", "\"handle\""})
     EXPECT_NE(text.find(key), std::string::npos) << key;
+  // Issue 14: --truth scores the three baselines on the same observation, and the ratio to the oracle
+  // template is partreg's figure over the oracle's.
+  const nlohmann::json report = nlohmann::json::parse(text);
+  const nlohmann::json& baselines = report.at("truth").at("baselines");
+  for (const char* baseline : {"oracle-template", "rigid-canonical", "mean-shape"})
+    EXPECT_GT(baselines.at(baseline).at("symmetric_rms_per_diagonal").get<double>(), 0.0) << baseline;
+  EXPECT_NEAR(baselines.at("ratio_to_oracle_template").get<double>(),
+              report.at("truth").at("symmetric_rms_per_diagonal").get<double>() /
+                  baselines.at("oracle-template").at("symmetric_rms_per_diagonal").get<double>(),
+              1e-12);
+  EXPECT_LE(baselines.at("oracle-template").at("symmetric_rms_per_diagonal").get<double>(),
+            baselines.at("rigid-canonical").at("symmetric_rms_per_diagonal").get<double>() + 1e-12)
+      << "the oracle's templates include the canonical";
 
   write("few.xyz", "0 0 0\n1 0 0\n0 1 0\n0 0 1\n1 1 1\n");
   write("nan.xyz", "nan nan nan\n");

@@ -94,10 +94,9 @@ TEST(FarthestPointSampling, CoversEveryDistinctPositionOfDuplicatedPoints) {
   EXPECT_EQ(positions.size(), 30u);
 }
 
-// Fails today: once every distinct position is picked, every distance left is 0 and the sampler picks
-// row 0 again (90 picks, 30 distinct rows), where the header promises row indices. Reported to the lead
-// (sampling.cpp is being changed elsewhere); enable it with the fix.
-TEST(FarthestPointSampling, DISABLED_NoRowTwiceWhenTheDistinctPositionsRunOut) {
+// Once every distinct position is picked, every distance left is 0: the duplicates follow, never a row
+// picked before.
+TEST(FarthestPointSampling, NoRowTwiceWhenTheDistinctPositionsRunOut) {
   const Points points = tripled_points();
   expect_farthest_point_order(points, farthest_point_indices(points, 90, 0), 0);
   expect_farthest_point_order(points, farthest_point_indices(points, 45, 7), 7);

@@ -3,6 +3,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <random>
 
@@ -91,12 +92,45 @@ TEST(Perturbation, TranslationMovesEveryAxisByTheLevelTimesTheDiagonal) {
   EXPECT_LT(((moved.points - points).rowwise() - shift).norm(), 1e-12);
 }
 
+TEST(Perturbation, YawTurnsAboutTheUpAxisAfterASmallTilt) {
+  const core::Points points = random_box(300, {1, 2, 3});
+  const Eigen::Vector3d up = Eigen::Vector3d::UnitZ();
+  for (const double yaw : eval::sweep_levels(eval::Perturbation::yaw)) {
+    const eval::Perturbed turned = eval::perturb(points, eval::Perturbation::yaw, yaw, 1.0, 3, up);
+    const Eigen::Matrix3d R = turned.T_perturbed_original.linear();
+    // The up axis leans by exactly the tilt; undoing the tilt leaves a turn about up by the yaw.
+    EXPECT_NEAR(std::acos(std::clamp((R * up).dot(up), -1.0, 1.0)), eval::kYawTilt, 1e-9) << yaw;
+    const Eigen::Vector3d tilt_axis = up.cross(R * up).normalized();
+    const Eigen::Matrix3d untilted = Eigen::AngleAxisd(-eval::kYawTilt, tilt_axis) * R;
+    EXPECT_LT((untilted - Eigen::AngleAxisd(yaw, up).toRotationMatrix()).norm(), 1e-9) << yaw;
+    EXPECT_LT(
+        (turned.points.row(5).transpose() - turned.T_perturbed_original * points.row(5).transpose()).norm(),
+        1e-12);
+  }
+  EXPECT_EQ(eval::sweep_levels(eval::Perturbation::yaw).size(), 12u);
+  EXPECT_NEAR(eval::shown_level(eval::Perturbation::yaw, eval::sweep_levels(eval::Perturbation::yaw)[11]),
+              330, 1e-9);
+}
+
+TEST(Perturbation, TheRotationSweepWidensPastThePapersLevels) {
+  const std::vector<double>& levels = eval::sweep_levels(eval::Perturbation::rotation);
+  ASSERT_GT(levels.size(), std::size_t(eval::kFirstWideRotationLevel));
+  for (int i = 0; i < eval::kFirstWideRotationLevel; ++i)
+    EXPECT_EQ(levels[i], eval::paper_levels(eval::Perturbation::rotation)[i]);
+  for (std::size_t i = 1; i < levels.size(); ++i) EXPECT_GT(levels[i], levels[i - 1]);
+  EXPECT_GT(levels[eval::kFirstWideRotationLevel], 0.65);
+  EXPECT_LE(levels.back(), M_PI / 2 + 1e-3);
+}
+
 TEST(Perturbation, LevelsOutOfRangeAreRefused) {
   const core::Points points = random_box(10, {1, 1, 1});
   EXPECT_THROW(eval::perturb(points, eval::Perturbation::noise, -0.1, 1.0, 1), UsageError);
   EXPECT_THROW(eval::perturb(points, eval::Perturbation::rotation, 4.0, 1.0, 1), UsageError);
   EXPECT_THROW(eval::perturb(points, eval::Perturbation::outliers, std::nan(""), 1.0, 1), UsageError);
   EXPECT_THROW(core::parse_enum<eval::Perturbation>("shear"), UsageError);
+  EXPECT_THROW(eval::perturb(points, eval::Perturbation::yaw, 2 * M_PI, 1.0, 1), UsageError);
+  EXPECT_THROW(eval::perturb(points, eval::Perturbation::yaw, 0.5, 1.0, 1, Eigen::Vector3d::Zero()),
+               UsageError);
 }
 
 }  // namespace

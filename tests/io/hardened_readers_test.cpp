@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 #include <sys/stat.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstring>
 #include <fstream>
@@ -79,6 +80,30 @@ TEST_F(Hardened, MalformedPcdFilesAreRefusedBeforePclSeesThem) {
                        "floating point of size 2");
 }
 
+// The face-list check walks every row in the file's byte order: quads and big-endian files still read.
+TEST_F(Hardened, BinaryPlyMeshesWithPolygonsAndBothByteOrdersAreRead) {
+  for (const bool big : {false, true}) {
+    std::string bytes = std::string("ply\nformat ") + (big ? "binary_big_endian" : "binary_little_endian") +
+                        " 1.0\nelement vertex 4\nproperty float x\nproperty float y\nproperty float z\n"
+                        "element face 1\nproperty list ushort int vertex_indices\nend_header\n";
+    auto put = [&](const void* value, std::size_t size) {
+      std::string raw(static_cast<const char*>(value), size);
+      if (big) std::reverse(raw.begin(), raw.end());
+      bytes += raw;
+    };
+    const float corners[4][3] = {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}};
+    for (const auto& corner : corners)
+      for (const float c : corner) put(&c, sizeof c);
+    const std::uint16_t count = 4;
+    put(&count, sizeof count);
+    for (const std::int32_t index : {0, 1, 2, 3}) put(&index, sizeof index);
+    const core::Mesh mesh = read_mesh(write(big ? "big.ply" : "little.ply", bytes));
+    EXPECT_EQ(mesh.vertices.rows(), 4);
+    EXPECT_EQ(mesh.faces.rows(), 2) << "the quad is split into two triangles";
+    EXPECT_FLOAT_EQ(mesh.vertices.col(0).maxCoeff(), 1.0f);
+  }
+}
+
 TEST_F(Hardened, PlyCountsAreCheckedAgainstTheFileSizeAndTheBudget) {
   const std::string header = "ply\nformat ascii 1.0\nelement vertex ";
   const std::string properties = "\nproperty float x\nproperty float y\nproperty float z\nend_header\n0 0 0\n";
@@ -120,6 +145,16 @@ TEST_F(Hardened, MeshFilesThatCrashedAssimpAreRefused) {
                       "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float z\n"
                       "element face 1\nproperty list uchar int vertex_indices\nend_header\n0 0\n1 0\n0 1\n3 0 1 2\n",
                       "no 'y' property");
+  // Found by fuzz_mesh in CI: assimp's triangulation aborts on a face of 0 vertices, binary or text.
+  std::string empty_face =
+      "ply\nformat binary_little_endian 1.0\nelement vertex 3\nproperty float x\nproperty float y\n"
+      "property float z\nelement face 1\nproperty list uchar int vertex_indices\nend_header\n";
+  empty_face += std::string(36, '\0') + std::string(1, '\0') + std::string(8, '\1');
+  expect_mesh_refused("empty_face.ply", empty_face, "PLY face 0 lists 0 vertices");
+  expect_mesh_refused("line_face.ply", kTriangleHeader + "end_header\n0 0 0\n1 0 0\n0 1 0\n2 0 1\n",
+                      "PLY face 0 lists 2 vertices");
+  expect_mesh_refused("negative_list.ply", kTriangleHeader + "end_header\n0 0 0\n1 0 0\n0 1 0\n-3 0 1 2\n",
+                      "has a list of -3 values");
   // An OFF file claiming more faces than it holds aborted.
   expect_mesh_refused("faces.off", "OFF\n3 1000 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n", "declares 1000 faces");
   expect_mesh_refused("few_faces.off", "OFF\n3 2 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n" + std::string(40, '\n'),

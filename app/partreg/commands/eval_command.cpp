@@ -35,6 +35,8 @@ struct EvalOptions {
   bool no_viewpoint = false, no_baselines = false;
   int folds = -1, views = -1;
   std::vector<int> levels;  // 1-based indices of the paper's five levels; empty = the protocol's
+  std::vector<std::string> sweeps;  // perturbation names; empty = the protocol's
+  bool wide_rotation = false;
   io::DatasetOptions dataset;
   eval::EvalSettings settings;
 };
@@ -76,6 +78,12 @@ eval::EvalInput load_input(EvalOptions& options) {
   return input;
 }
 
+std::vector<std::string> sweep_names(const eval::Protocol& protocol) {
+  std::vector<std::string> names;
+  for (const eval::Perturbation kind : protocol.sweeps) names.push_back(core::enum_name(kind));
+  return names;
+}
+
 void configure(EvalOptions& options) {
   eval::EvalSettings& settings = options.settings;
   settings.protocol = eval::protocol_by_name(options.protocol);
@@ -89,6 +97,15 @@ void configure(EvalOptions& options) {
       settings.protocol.levels.push_back(level - 1);
     }
   }
+  if (!options.sweeps.empty()) {
+    settings.protocol.sweeps.clear();
+    for (const std::string& name : options.sweeps) {
+      const eval::Perturbation kind = core::parse_enum<eval::Perturbation>(name);
+      if (kind == eval::Perturbation::none) throw UsageError("--sweeps: 'none' is not a sweep");
+      settings.protocol.sweeps.push_back(kind);
+    }
+  }
+  settings.protocol.wide_rotation = options.wide_rotation;
   settings.variants.clear();
   for (const std::string& name : options.variants) {
     try {
@@ -151,6 +168,8 @@ void run_eval(EvalOptions& options) {
   const nlohmann::json run = {
       {"dataset", options.dataset_path},
       {"protocol", options.protocol},
+      {"sweeps", sweep_names(options.settings.protocol)},
+      {"wide_rotation", options.settings.protocol.wide_rotation},
       {"shard", options.shard},
       {"threads", options.settings.threads},
       {"variants", options.variants},
@@ -207,6 +226,13 @@ void add_eval_command(CLI::App& app) {
   command->add_option("--views", o->views, "partial views per instance: 0, 12, 42, 162, ...");
   command->add_option("--levels", o->levels, "which of the paper's five sweep levels (1-5), e.g. 1,3,5")
       ->delimiter(',');
+  command
+      ->add_option("--sweeps", o->sweeps,
+                   "perturbation sweeps to run: noise, outliers, rotation, translation (the paper's, default) "
+                   "and yaw (0 to 330 degrees about the up axis)")
+      ->delimiter(',');
+  command->add_flag("--wide-rotation", o->wide_rotation,
+                    "the rotation sweep goes on past the paper's 0.65 rad, up to pi/2");
   command->add_option("--shard", o->shard, "run only shard i of n (tested instances dealt round-robin)")
       ->capture_default_str();
   // Every registration setting but the variant (one row per --variants entry) and the viewpoint (each

@@ -10,9 +10,11 @@
 #include "partreg/commands/registration_flags.hpp"
 #include "partreg/core/deformation.hpp"
 #include "partreg/core/errors.hpp"
+#include "partreg/core/kdtree.hpp"
 #include "partreg/core/parallel.hpp"
 #include "partreg/core/registration.hpp"
 #include "partreg/core/truth_errors.hpp"
+#include "partreg/eval/baselines.hpp"
 #include "partreg/io/cloud_io.hpp"
 #include "partreg/io/frames_file.hpp"
 #include "partreg/io/mesh_io.hpp"
@@ -51,18 +53,57 @@ void write_outputs(const core::CategoryModel& model, const core::RegistrationRes
   }
 }
 
-// Errors against the ground-truth instance, normalised by its own diagonal (truth_errors.hpp).
-nlohmann::json truth_errors(const core::RegistrationResult& result,
-                            const std::vector<std::string>& part_names, const std::string& truth_path) {
-  const core::Points truth = read_points_logged(truth_path, 20000, 2);
-  const core::TruthErrors errors = core::measure_against_truth(result.deformed, result.part, part_names,
-                                                               truth, core::truth_diagonal(truth));
-  std::cerr << core::enum_name(result.variant) << " against " << truth_path << ": symmetric RMS "
+// partreg's holistic pose: the result's holistic fit where it has one, else a holistic registration's.
+Eigen::Matrix4d holistic_pose(const core::CategoryModel& model, const core::Points& observed,
+                              const core::RegistrationResult& result, core::RegistrationSettings settings) {
+  for (const core::SpaceFit& fit : result.fits)
+    if (fit.space == model.holistic().name) return fit.T_observed_canonical;
+  settings.variant = core::Variant::holistic;
+  return core::register_observation(model, observed, settings).fits.front().T_observed_canonical;
+}
+
+// The baselines of the evaluation on this observation and truth (eval/baselines.hpp), with the model's
+// training fits as the oracle's templates (the training instances themselves are not in the model).
+nlohmann::json baseline_errors(const core::CategoryModel& model, const core::Points& observed,
+                               const core::RegistrationResult& result, const RegisterOptions& options,
+                               const core::KdTree& truth, double diagonal, double partreg_figure) {
+  const eval::BaselineObservation seen{&observed, &truth, diagonal, nullptr,
+                                       holistic_pose(model, observed, result, options.settings)};
+  const core::InitialisationSettings& init = options.settings.initialisation;
+  const std::vector<eval::BaselineScore> scores = eval::score_baselines(
+      model, eval::model_templates(model), seen, eval::start_rotations(init.restarts, init.up));
+  nlohmann::json json = nlohmann::json::object();
+  std::cerr << "baselines on the same observation, symmetric RMS of the diagonal:";
+  for (const eval::BaselineScore& score : scores) {
+    nlohmann::json entry = io::truth_errors_json(score.errors);
+    entry["shape"] = score.shape;
+    json[core::enum_name(score.baseline)] = entry;
+    std::cerr << ' ' << core::enum_name(score.baseline) << ' ' << score.errors.symmetric_rms_per_diagonal;
+  }
+  const double oracle = scores.front().errors.symmetric_rms_per_diagonal;
+  json["ratio_to_oracle_template"] = partreg_figure / oracle;
+  std::cerr << "; " << core::enum_name(result.variant) << " / oracle-template " << partreg_figure / oracle
+            << " (templates: the model's training fits)\n";
+  return json;
+}
+
+// Errors against the ground-truth instance, normalised by its own diagonal (truth_errors.hpp), and the
+// baselines on the same observation.
+nlohmann::json truth_errors(const core::CategoryModel& model, const core::Points& observed,
+                            const core::RegistrationResult& result, const RegisterOptions& options) {
+  const core::Points truth = read_points_logged(options.truth_path, 20000, 2);
+  const double diagonal = core::truth_diagonal(truth);
+  const core::KdTree truth_tree(truth);
+  const core::TruthErrors errors =
+      core::measure_against_truth(result.deformed, result.part, model.part_names, truth_tree, diagonal);
+  std::cerr << core::enum_name(result.variant) << " against " << options.truth_path << ": symmetric RMS "
             << errors.symmetric_rms_per_diagonal << " of its diagonal; Eq. 5 " << errors.eq5
             << " (data units squared), " << errors.eq5_per_diagonal2 << " of the diagonal squared; Chamfer "
             << errors.chamfer << '\n';
   nlohmann::json json = io::truth_errors_json(errors);
-  json["file"] = truth_path;
+  json["file"] = options.truth_path;
+  json["baselines"] = baseline_errors(model, observed, result, options, truth_tree, diagonal,
+                                      errors.symmetric_rms_per_diagonal);
   return json;
 }
 
@@ -96,8 +137,7 @@ void run_register(const RegisterOptions& options) {
             << result.fit.p90 << "; " << result.seconds << " s\n";
   nlohmann::json report =
       io::result_json(result, options.settings, {options.model_path, options.observed_path});
-  if (!options.truth_path.empty())
-    report["truth"] = truth_errors(result, model.part_names, options.truth_path);
+  if (!options.truth_path.empty()) report["truth"] = truth_errors(model, observed, result, options);
   write_outputs(model, result, frames, options);
   write_json_or_stdout(report, options.json_path);
 }

@@ -68,19 +68,23 @@ double trimmed_mean_distance(const Eigen::VectorXd& squared, double cap) {
   return squared.size() ? sum / static_cast<double>(squared.size()) : std::numeric_limits<double>::infinity();
 }
 
-// Continues a candidate by `steps` outer iterations, keeping its history.
+// Continues a candidate by `steps` outer iterations; the new steps are appended to its history.
 void advance(SpaceSolution& candidate, int steps, const ShapeSpace& space, const Points& normals,
              const Observation& observation, RegistrationSettings settings) {
   settings.convergence.outer_iterations = steps;
   SpaceSolution next = solve_space(space, normals, observation, candidate.latent, candidate.pose, settings);
-  const double offset = candidate.seconds;
-  for (double& seconds : next.step_seconds) seconds += offset;
-  next.steps.insert(next.steps.begin(), candidate.steps.begin(), candidate.steps.end());
-  next.step_costs.insert(next.step_costs.begin(), candidate.step_costs.begin(), candidate.step_costs.end());
-  next.step_seconds.insert(next.step_seconds.begin(), candidate.step_seconds.begin(),
-                           candidate.step_seconds.end());
+  const auto append = [](auto& history, const auto& more) {
+    history.insert(history.end(), more.begin(), more.end());
+  };
+  for (double& seconds : next.step_seconds) seconds += candidate.seconds;
+  append(candidate.steps, next.steps);
+  append(candidate.step_costs, next.step_costs);
+  append(candidate.step_seconds, next.step_seconds);
+  next.steps = std::move(candidate.steps);
+  next.step_costs = std::move(candidate.step_costs);
+  next.step_seconds = std::move(candidate.step_seconds);
   next.iterations += candidate.iterations;
-  next.seconds += offset;
+  next.seconds += candidate.seconds;
   candidate = std::move(next);
 }
 

@@ -57,12 +57,15 @@ std::vector<int> farthest_point_indices(const Points& points, std::size_t count,
   const Eigen::VectorXd xs = points.col(0), ys = points.col(1), zs = points.col(2);
   const double *x = xs.data(), *y = ys.data(), *z = zs.data();
   std::vector<double> distance(static_cast<std::size_t>(n), std::numeric_limits<double>::infinity());
+  // A chosen row's distance is -1, below every distance left, so no row is chosen twice even once every
+  // distinct position is taken and the rest are duplicates at distance 0.
+  distance[static_cast<std::size_t>(first)] = -1.0;
   std::vector<int> chosen{first};
   chosen.reserve(count);
   Eigen::Index next = first;
   while (chosen.size() < count) {
     const double cx = x[next], cy = y[next], cz = z[next];
-    double farthest = -1.0;
+    double farthest = -2.0;
     Eigen::Index farthest_index = 0;
     for (Eigen::Index i = 0; i < n; ++i) {
       const double dx = x[i] - cx, dy = y[i] - cy, dz = z[i] - cz;
@@ -74,6 +77,7 @@ std::vector<int> farthest_point_indices(const Points& points, std::size_t count,
       }
     }
     next = farthest_index;
+    distance[static_cast<std::size_t>(next)] = -1.0;
     chosen.push_back(static_cast<int>(next));
   }
   return chosen;

@@ -7,6 +7,7 @@
 #include <limits>
 
 #include "partreg/core/errors.hpp"
+#include "partreg/core/gaussian_kernel.hpp"
 #include "partreg/core/sampling.hpp"
 
 namespace partreg::eval {
@@ -123,6 +124,22 @@ std::vector<Template> fold_templates(const core::CategoryModel& model,
             ? instance.points
             : core::select_rows(instance.points, core::farthest_point_indices(instance.points, count));
     templates.push_back({instance.name, core::KdTree(sampled), false});
+  }
+  return templates;
+}
+
+std::vector<Template> model_templates(const core::CategoryModel& model) {
+  std::vector<Template> templates;
+  templates.push_back(
+      {model.training.canonical, core::KdTree(model.normalization.undo(model.canonical)), true});
+  const core::ShapeSpace& holistic = model.holistic();
+  for (std::size_t i = 0; i < model.training.instances.size(); ++i) {
+    if (model.training.instances[i] == model.training.canonical) continue;
+    const core::Points weights = model.training_weight_field(static_cast<int>(i));
+    const core::Points fitted =
+        holistic.canonical +
+        core::Points(core::apply_kernel(holistic.canonical, holistic.canonical, weights, holistic.beta));
+    templates.push_back({model.training.instances[i], core::KdTree(model.normalization.undo(fitted)), false});
   }
   return templates;
 }

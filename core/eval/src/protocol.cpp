@@ -67,8 +67,8 @@ std::vector<Job> plan_jobs(const TestCase& test, const Protocol& protocol) {
   std::vector<Job> jobs;
   for (std::size_t o = 0; o < test.observations.size(); ++o) jobs.push_back({o, Perturbation::none, -1});
   const std::vector<std::size_t> swept = swept_observations(test, protocol);
-  for (Perturbation kind : sweep_kinds())
-    for (int level : protocol.levels)
+  for (Perturbation kind : protocol.sweeps)
+    for (int level : planned_levels(kind, protocol))
       for (std::size_t o : swept) jobs.push_back({o, kind, level});
   return jobs;
 }
@@ -162,11 +162,12 @@ void run_job(const EvalInput& input, const EvalSettings& settings, const FoldCon
   const core::CategoryModel& model = fold.model;
   const core::TrainingInstance& instance = input.instances[test.instance];
   const Observation& observation = test.observations[job.observation];
-  const double paper_level = job.level_index < 0 ? 0.0 : paper_levels(job.kind)[job.level_index];
+  const double paper_level = job.level_index < 0 ? 0.0 : sweep_levels(job.kind)[job.level_index];
   const double level = relative_level(job.kind, paper_level);
   const std::uint64_t seed = mix(mix(mix(settings.seed, test.instance), observation.view + 1),
-                                 static_cast<std::uint64_t>(job.kind) * 8 + (job.level_index + 1));
-  const Perturbed perturbed = perturb(observation.points, job.kind, level, test.diagonal, seed);
+                                 static_cast<std::uint64_t>(job.kind) * 16 + (job.level_index + 1));
+  const Perturbed perturbed = perturb(observation.points, job.kind, level, test.diagonal, seed,
+                                      settings.registration.initialisation.up);
   const core::KdTree truth(
       moved_by(instance.points, perturbed.T_perturbed_original));  // shared by the variants
   const std::optional<core::Points> truth_of_row =
@@ -214,9 +215,28 @@ void run_job(const EvalInput& input, const EvalSettings& settings, const FoldCon
 
 }  // namespace
 
+std::vector<int> planned_levels(Perturbation kind, const Protocol& protocol) {
+  const int count = static_cast<int>(sweep_levels(kind).size());
+  std::vector<int> levels;
+  if (kind == Perturbation::yaw) {
+    for (int level = 0; level < count; ++level) levels.push_back(level);
+    return levels;
+  }
+  for (int level : protocol.levels)
+    if (level >= 0 && level < kFirstWideRotationLevel) levels.push_back(level);
+  if (kind == Perturbation::rotation && protocol.wide_rotation)
+    for (int level = kFirstWideRotationLevel; level < count; ++level) levels.push_back(level);
+  return levels;
+}
+
 Protocol protocol_by_name(const std::string& name) {
   if (name == "paper") return Protocol{};
-  if (name == "quick") return Protocol{"quick", 12, 2, {0, 2, 4}, 2, 0};
+  if (name == "quick") {
+    Protocol quick;
+    quick.name = "quick", quick.views = 12, quick.sweep_views = 2, quick.levels = {0, 2, 4};
+    quick.max_test_instances = 2;
+    return quick;
+  }
   throw UsageError("unknown protocol '" + name + "' (paper, quick)");
 }
 

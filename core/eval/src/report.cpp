@@ -285,14 +285,15 @@ void sweep_tables(std::ostringstream& out, const std::vector<EvalRow>& rows) {
           }))
         continue;
       out << "\nSweeps, " << category << ", " << (partial ? "partial views" : "full views")
-          << " (mean Eq. 5 x 1e4; levels in the paper's units for a 0.3 m object):\n\n";
+          << " (mean Eq. 5 x 1e4; levels in the paper's units for a 0.3 m object, yaw in degrees after a "
+          << kYawTilt << " rad tilt):\n\n";
       header_row(out, "perturbation", variants);
       out << "| clean (same observations) |";
       for (const std::string& variant : variants)
         out << ' ' << cell(swept_clean_eq5_per_diagonal2(rows, category, variant, partial)) << " |";
       out << "\n";
-      for (Perturbation kind : sweep_kinds())
-        for (int level = 0; level < 5; ++level) {
+      for (Perturbation kind : all_sweep_kinds())
+        for (int level = 0; level < static_cast<int>(sweep_levels(kind).size()); ++level) {
           std::ostringstream cells;
           bool any = false;
           for (const std::string& variant : variants) {
@@ -301,8 +302,8 @@ void sweep_tables(std::ostringstream& out, const std::vector<EvalRow>& rows) {
             cells << ' ' << cell(mean) << " |";
           }
           if (any)
-            out << "| " << core::enum_name(kind) << ' ' << paper_levels(kind)[level] << " |" << cells.str()
-                << "\n";
+            out << "| " << core::enum_name(kind) << ' ' << shown_level(kind, sweep_levels(kind)[level])
+                << (kind == Perturbation::yaw ? " deg" : "") << " |" << cells.str() << "\n";
         }
     }
 }

@@ -35,6 +35,8 @@ std::string axis_label(Perturbation kind) {
       return "rotation about x, y, z (rad)";
     case Perturbation::translation:
       return "translation per axis (m, for a 0.3 m object)";
+    case Perturbation::yaw:
+      return "yaw about the up axis (degrees, after a small tilt)";
     case Perturbation::none:
       break;
   }
@@ -77,10 +79,12 @@ Series panel_series(const std::vector<EvalRow>& rows, const std::string& categor
   for (const std::string& variant : variants_of(rows)) {
     std::vector<std::pair<double, double>> points;
     const double clean = swept_clean_eq5_per_diagonal2(rows, category, variant, partial);
-    if (std::isfinite(clean)) points.emplace_back(0.0, clean * 1e4);
-    for (int level = 0; level < 5; ++level) {
+    // Yaw's first level is 0 (its own clean point, after the tilt): the untilted result is not drawn there.
+    if (std::isfinite(clean) && kind != Perturbation::yaw) points.emplace_back(0.0, clean * 1e4);
+    const std::vector<double>& levels = sweep_levels(kind);
+    for (int level = 0; level < static_cast<int>(levels.size()); ++level) {
       const double mean = mean_eq5_per_diagonal2(rows, category, variant, partial, kind, level);
-      if (std::isfinite(mean)) points.emplace_back(paper_levels(kind)[level], mean * 1e4);
+      if (std::isfinite(mean)) points.emplace_back(shown_level(kind, levels[level]), mean * 1e4);
     }
     if (points.size() > 1) series.emplace_back(variant, points);
   }
@@ -92,7 +96,11 @@ void draw_panel(cairo_t* cr, const Box& box, Perturbation kind, const Series& se
   for (const auto& [variant, points] : series)
     for (const auto& point : points) top = std::max(top, point.second);
   top = nice_ceiling(top * 1.05);
-  const double right = paper_levels(kind).back();
+  // The axis ends at the last level run (the wide rotation levels stretch it to pi only when they ran).
+  double right = 0.0;
+  for (const auto& [variant, points] : series)
+    for (const auto& point : points) right = std::max(right, point.first);
+  if (!(right > 0.0)) right = shown_level(kind, paper_levels(kind).back());
   const Box plot{box.x + 62, box.y + 30, box.width - 80, box.height - 80};
   auto to_x = [&](double level) { return plot.x + level / right * plot.width; };
   auto to_y = [&](double value) { return plot.y + plot.height - value / top * plot.height; };
@@ -109,8 +117,14 @@ void draw_panel(cairo_t* cr, const Box& box, Perturbation kind, const Series& se
     cairo_set_source_rgb(cr, 0, 0, 0);
     text(cr, plot.x - 6, to_y(value) + 4, number(value, top < 4 ? 2 : 1), 11, 1.0);
   }
-  for (double level : paper_levels(kind))
-    text(cr, to_x(level), plot.y + plot.height + 16, number(level, 3), 11, 0.5);
+  std::vector<double> ticks;  // the levels on the axis, thinned to at most six labels
+  for (double level : sweep_levels(kind))
+    if (shown_level(kind, level) <= right * (1 + 1e-9)) ticks.push_back(shown_level(kind, level));
+  const std::size_t every = (ticks.size() + 5) / 6;
+  for (std::size_t t = 0; t < ticks.size(); t += every)
+    if (ticks[t] > 0.0)
+      text(cr, to_x(ticks[t]), plot.y + plot.height + 16, number(ticks[t], kind == Perturbation::yaw ? 0 : 3),
+           11, 0.5);
   text(cr, plot.x - 6, plot.y + plot.height + 16, "0", 11, 0.5);
   text(cr, plot.x + plot.width / 2, plot.y + plot.height + 36, axis_label(kind), 12, 0.5);
   cairo_rectangle(cr, plot.x, plot.y, plot.width, plot.height);
@@ -148,14 +162,17 @@ void draw_legend(cairo_t* cr, double x, double y, const std::vector<std::string>
 
 bool write_sweep_plot(const std::filesystem::path& path, const std::vector<EvalRow>& rows,
                       const std::string& category, bool partial) {
-  std::vector<Series> panels;
-  bool any = false;
-  for (Perturbation kind : sweep_kinds()) {
-    panels.push_back(panel_series(rows, category, partial, kind));
-    any = any || !panels.back().empty();
+  std::vector<Series> panels;  // one per sweep that ran, two to a row
+  std::vector<Perturbation> kinds;
+  for (Perturbation kind : all_sweep_kinds()) {
+    Series series = panel_series(rows, category, partial, kind);
+    if (series.empty()) continue;
+    panels.push_back(std::move(series));
+    kinds.push_back(kind);
   }
-  if (!any) return false;
-  const int width = 1000, height = 760;
+  if (panels.empty()) return false;
+  const int panel_rows = static_cast<int>((panels.size() + 1) / 2);
+  const int width = 1000, height = 70 + 345 * panel_rows;
   cairo_surface_t* surface = cairo_image_surface_create(CAIRO_FORMAT_RGB24, width, height);
   cairo_t* cr = cairo_create(surface);
   cairo_set_source_rgb(cr, 1, 1, 1);
@@ -174,9 +191,8 @@ bool write_sweep_plot(const std::filesystem::path& path, const std::vector<EvalR
       variants.push_back(variant);
   draw_legend(cr, 24, 56, variants);
   for (std::size_t k = 0; k < panels.size(); ++k) {
-    const Box box{double(k % 2) * width / 2, 70 + double(k / 2) * (height - 70) / 2, width / 2.0,
-                  (height - 70) / 2.0};
-    draw_panel(cr, box, sweep_kinds()[k], panels[k]);
+    const Box box{double(k % 2) * width / 2, 70 + double(k / 2) * 345.0, width / 2.0, 345.0};
+    draw_panel(cr, box, kinds[k], panels[k]);
   }
   cairo_destroy(cr);
   const cairo_status_t status = cairo_surface_write_to_png(surface, path.c_str());

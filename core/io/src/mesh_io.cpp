@@ -76,8 +76,8 @@ core::Mesh read_with_assimp(const std::filesystem::path& path) {
   // ValidateDataStructure runs first among the steps and refuses scenes with broken indices before the
   // other steps walk them.
   Assimp::Importer importer;
-  const unsigned flags = aiProcess_ValidateDataStructure | aiProcess_Triangulate | aiProcess_JoinIdenticalVertices |
-                         aiProcess_FindDegenerates | aiProcess_SortByPType;
+  const unsigned flags = aiProcess_ValidateDataStructure | aiProcess_Triangulate |
+                         aiProcess_JoinIdenticalVertices | aiProcess_FindDegenerates | aiProcess_SortByPType;
   const aiScene* scene = importer.ReadFile(name, flags);
   if (!scene && lower_extension(path) == ".obj") scene = read_tolerant_obj(importer, path, flags);
   if (!scene || !scene->mRootNode)
@@ -116,12 +116,12 @@ core::Mesh read_mesh(const std::filesystem::path& path) {
     mesh.vertices = std::move(data.points);
     mesh.faces = std::move(data.faces);
   } else {
-    if (extension == ".ply")  // assimp trusts PLY headers
-      detail::check_ply_mesh_header(detail::read_checked_ply_header(path), name);
+    if (extension == ".ply") detail::check_ply_mesh(path);  // assimp trusts PLY headers and face lists
     mesh = read_with_assimp(path);
   }
   mesh.faces = without_degenerate(mesh.faces);
-  if (mesh.faces.rows() == 0) throw InputError(name + " has no faces: it is a point cloud, read it as a cloud");
+  if (mesh.faces.rows() == 0)
+    throw InputError(name + " has no faces: it is a point cloud, read it as a cloud");
   if (!mesh.vertices.allFinite()) throw InputError(name + " has NaN or infinite vertex coordinates");
   return mesh;
 }
@@ -152,11 +152,13 @@ void put_ply(std::ostream& out, const core::Mesh& mesh, const Eigen::VectorXi* v
 
 }  // namespace
 
-void write_mesh(const std::filesystem::path& path, const core::Mesh& mesh, const Eigen::VectorXi* vertex_part) {
+void write_mesh(const std::filesystem::path& path, const core::Mesh& mesh,
+                const Eigen::VectorXi* vertex_part) {
   write_mesh(path, mesh, vertex_part ? PointAttributes{{{"part", *vertex_part}}, {}} : PointAttributes{});
 }
 
-void write_mesh(const std::filesystem::path& path, const core::Mesh& mesh, const PointAttributes& attributes) {
+void write_mesh(const std::filesystem::path& path, const core::Mesh& mesh,
+                const PointAttributes& attributes) {
   const FileFormat format = output_format(path, OutputKind::mesh);
   const Eigen::Index n = mesh.vertices.rows();
   for (const auto& [name, values] : attributes.integers)
@@ -168,7 +170,8 @@ void write_mesh(const std::filesystem::path& path, const core::Mesh& mesh, const
     std::ofstream out(temporary, std::ios::binary);
     out.precision(9);
     if (format == FileFormat::obj) put_obj(out, mesh);
-    if (format == FileFormat::ply) put_ply(out, mesh, part == attributes.integers.end() ? nullptr : &part->second);
+    if (format == FileFormat::ply)
+      put_ply(out, mesh, part == attributes.integers.end() ? nullptr : &part->second);
     if (format == FileFormat::vtp) detail::write_vtp(out, {mesh.vertices, {}, mesh.faces, attributes});
     if (!out.flush()) throw InputError("cannot write " + path.string());
   });

@@ -22,6 +22,45 @@ std::string normalised_type(const std::string& type, const std::string& file) {
   return found->second;
 }
 
+bool is_signed(const std::string& type) { return type == "char" || type == "short" || type == "int"; }
+
+// Reads one list length of `type` (an integer type) from binary data in the file's byte order.
+long long read_binary_count(std::istream& in, const std::string& type, bool big_endian) {
+  unsigned char bytes[8] = {};
+  const std::size_t size = ply_type_size(type);
+  if (!in.read(reinterpret_cast<char*>(bytes), static_cast<std::streamsize>(size))) return -1;
+  unsigned long long value = 0;
+  for (std::size_t i = 0; i < size; ++i)
+    value |= static_cast<unsigned long long>(bytes[big_endian ? size - 1 - i : i]) << (8 * i);
+  if (is_signed(type) && size < 8 && (value >> (8 * size - 1)) & 1u)
+    return static_cast<long long>(value) - (1ll << (8 * size));
+  return static_cast<long long>(value);
+}
+
+// Reads one list length written as text; -1 when the data ends or the token is not a whole number.
+long long read_ascii_count(std::istream& in) {
+  double value = -1;
+  if (!(in >> value) || value != static_cast<double>(static_cast<long long>(value))) return -1;
+  return static_cast<long long>(value);
+}
+
+// Skips `count` values of `type` (binary) or `count` tokens (ASCII).
+bool skip_values(std::istream& in, std::uint64_t count, const std::string& type, bool ascii) {
+  if (!ascii)
+    return static_cast<bool>(
+        in.seekg(static_cast<std::streamoff>(count * ply_type_size(type)), std::ios::cur));
+  std::string token;
+  for (std::uint64_t i = 0; i < count; ++i)
+    if (!(in >> token)) return false;
+  return true;
+}
+
+bool has_list(const PlyElement& element) {
+  for (const PlyProperty& property : element.properties)
+    if (property.is_list) return true;
+  return false;
+}
+
 }  // namespace
 
 std::size_t PlyHeader::count_of(const std::string& element) const {
@@ -71,9 +110,11 @@ PlyHeader read_ply_header(std::istream& in, const std::string& file) {
       if (!words || count < 0) throw InputError(file + ": malformed PLY element line '" + line + "'");
       element.count = static_cast<std::size_t>(count);
       const bool faces = element.name == "face";
-      check_count(file, faces ? "faces" : element.name == "vertex" ? "vertices" : element.name + " elements",
-                  element.count,
-                  faces ? kReadBudget.max_faces : kReadBudget.max_points);
+      check_count(file,
+                  faces                      ? "faces"
+                  : element.name == "vertex" ? "vertices"
+                                             : element.name + " elements",
+                  element.count, faces ? kReadBudget.max_faces : kReadBudget.max_points);
       header.elements.push_back(element);
     } else if (keyword == "property") {
       if (header.elements.empty()) throw InputError(file + ": PLY property before any element");
@@ -94,7 +135,8 @@ PlyHeader read_ply_header(std::istream& in, const std::string& file) {
       header.elements.back().properties.push_back(property);
     } else if (keyword != "comment" && keyword != "obj_info" && !keyword.empty()) {
       // assimp aborts on some lines it does not know: the PLY grammar has no others.
-      throw InputError(file + ": unknown PLY header line '" + line.substr(0, 40) + "' (is end_header missing?)");
+      throw InputError(file + ": unknown PLY header line '" + line.substr(0, 40) +
+                       "' (is end_header missing?)");
     }
   }
   throw InputError(file + ": PLY header has no end_header (truncated file?)");
@@ -130,12 +172,57 @@ PlyHeader read_checked_ply_header(const std::filesystem::path& path) {
   return read_checked_ply_header(in, size, path.string());
 }
 
+void check_ply_face_lists(std::istream& in, const PlyHeader& header, const std::string& file) {
+  const bool ascii = header.format == PlyHeader::Format::ascii;
+  const bool big_endian = header.format == PlyHeader::Format::binary_big_endian;
+  const std::string truncated = file + " is truncated (its PLY data ends before its faces do)";
+  for (const PlyElement& element : header.elements) {
+    const bool faces = element.name == "face";
+    if (!ascii && !has_list(element)) {  // fixed-size rows: one jump
+      std::uint64_t row = 0;
+      for (const PlyProperty& property : element.properties) row += ply_type_size(property.type);
+      if (!skip_values(in, element.count * row, "uchar", false)) throw InputError(truncated);
+    } else {
+      for (std::size_t item = 0; item < element.count; ++item)
+        for (const PlyProperty& property : element.properties) {
+          if (!property.is_list) {
+            if (!skip_values(in, 1, property.type, ascii)) throw InputError(truncated);
+            continue;
+          }
+          const long long count =
+              ascii ? read_ascii_count(in) : read_binary_count(in, property.count_type, big_endian);
+          if (!in) throw InputError(truncated);
+          if (count < 0)
+            throw InputError(file + ": PLY " + element.name + " " + std::to_string(item) + " has a list of " +
+                             std::to_string(count) + " values");
+          if (faces && count < 3)
+            throw InputError(file + ": PLY face " + std::to_string(item) + " lists " + std::to_string(count) +
+                             " vertices (a face needs at least 3)");
+          if (!skip_values(in, static_cast<std::uint64_t>(count), property.type, ascii))
+            throw InputError(truncated);
+        }
+    }
+    if (faces) return;
+  }
+}
+
+void check_ply_mesh(const std::filesystem::path& path) {
+  const std::string file = path.string();
+  const std::uint64_t size = checked_input_size(path);
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw InputError("cannot open " + file);
+  const PlyHeader header = read_checked_ply_header(in, size, file);
+  check_ply_mesh_header(header, file);
+  check_ply_face_lists(in, header, file);
+}
+
 void check_ply_mesh_header(const PlyHeader& header, const std::string& file) {
   for (const PlyElement& element : header.elements) {
     if (element.name != "vertex") continue;
     for (const char* axis : {"x", "y", "z"}) {
       bool found = false;
-      for (const PlyProperty& property : element.properties) found |= property.name == axis && !property.is_list;
+      for (const PlyProperty& property : element.properties)
+        found |= property.name == axis && !property.is_list;
       if (!found) throw InputError(file + ": PLY vertices have no '" + axis + "' property");
     }
     return;

@@ -43,6 +43,15 @@ PlyHeader read_checked_ply_header(std::istream& in, std::uint64_t file_size, con
 /// A mesh's header (before assimp reads the file): a vertex element with scalar x, y and z.
 void check_ply_mesh_header(const PlyHeader& header, const std::string& file);
 
+/// Everything partreg checks in a PLY mesh before assimp reads it: the header's counts against the file's
+/// size, its vertex properties, and its face lists (check_ply_face_lists).
+void check_ply_mesh(const std::filesystem::path& path);
+
+/// Walks the data after the header (`in` at its first byte) up to the end of the face element and checks
+/// that every face lists at least 3 vertices: assimp's triangulation aborts on faces of 0 vertices.
+/// InputError naming `file` and the face otherwise, or where the data ends early.
+void check_ply_face_lists(std::istream& in, const PlyHeader& header, const std::string& file);
+
 /// Reads the header of the PLY file `path` and checks its counts against the file's size.
 PlyHeader read_checked_ply_header(const std::filesystem::path& path);
 

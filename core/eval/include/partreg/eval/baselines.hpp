@@ -87,6 +87,12 @@ struct Template {
 std::vector<Template> fold_templates(const core::CategoryModel& model,
                                      const std::vector<core::TrainingInstance>& training);
 
+/// The templates a model alone can give (when its training instances are not at hand, as in `register
+/// --truth`): the canonical first, then each training instance as training fitted it, canonical + G(C, C) W_i
+/// (M points, data frame). The fits stand in for the instances: their distance to them is training's fit
+/// error (`partreg train` reports it), so the oracle over them is a little weaker than over the instances.
+std::vector<Template> model_templates(const core::CategoryModel& model);
+
 /// One baseline's score on one observation.
 struct BaselineScore {
   Baseline baseline = Baseline::oracle_template;

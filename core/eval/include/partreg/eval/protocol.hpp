@@ -24,13 +24,18 @@ struct Protocol {
   std::string name = "paper";
   int views = 42;       ///< partial views per instance (a tessellated sphere's vertex count; 0 = none)
   int sweep_views = 6;  ///< of those, how many also get the perturbation sweeps (spread evenly, every k-th)
-  std::vector<int> levels = {0, 1, 2, 3, 4};  ///< which of the paper's five levels each sweep uses
-  int max_test_instances = 0;                 ///< 0 = every instance; else that many, evenly spread
-  int folds = 0;                              ///< 0 = leave-one-out; else k folds
+  std::vector<int> levels = {0, 1, 2, 3, 4};  ///< which of the paper's five levels each paper sweep uses
+  /// The sweeps run on the swept observations: the paper's four by default; yaw adds a turn about the up
+  /// axis at all twelve of its levels (perturbation.hpp).
+  std::vector<Perturbation> sweeps = sweep_kinds();
+  bool wide_rotation = false;  ///< the rotation sweep goes on past the paper's 0.65 rad, up to pi/2
+  int max_test_instances = 0;  ///< 0 = every instance; else that many, evenly spread
+  int folds = 0;               ///< 0 = leave-one-out; else k folds
 };
 
 /// "paper": 42 views, sweeps on the full view and 6 partial views at all five levels, leave-one-out.
 /// "quick": 12 views, sweeps on the full view and 2 partial views at levels 1, 3 and 5, 2 test instances.
+/// Both run the paper's four sweeps only.
 /// UsageError for another name.
 Protocol protocol_by_name(const std::string& name);
 
@@ -81,6 +86,9 @@ struct EvalRow {
 /// Progress (core/progress.hpp): rows done, rows planned, and a line worth logging (empty when there is
 /// none). The report after a fold's training has `aside` set: time-left estimates leave training out.
 using EvalProgress = core::ProgressListener;
+
+/// The level indices (into sweep_levels(kind)) the protocol runs for a sweep of `kind`.
+std::vector<int> planned_levels(Perturbation kind, const Protocol& protocol);
 
 /// Which instances are tested (shard applied), in order; InputError when the category has too few instances
 /// for the protocol (fewer than 3, or fewer than 2 left to train on in a fold).
