@@ -26,6 +26,10 @@ struct Console {
   NullBuffer null_buffer;
   std::ostream null_stream{&null_buffer};
   std::streambuf* saved_error_buffer = nullptr;  // stderr's own buffer while --quiet holds it
+  // Static objects end before the streams' last flush at exit: stderr must not point here by then.
+  ~Console() {
+    if (saved_error_buffer) std::cerr.rdbuf(saved_error_buffer);
+  }
 };
 
 Console& console() {
