@@ -1,7 +1,6 @@
 // Progress and verbosity of the real `partreg` executable: lines in a log (stderr not a terminal), --quiet
 // and --verbose on every command.
 #include <gtest/gtest.h>
-
 #include <sys/wait.h>
 
 #include <cstdlib>
@@ -39,8 +38,8 @@ class Progress : public ::testing::Test {
   testing::TempDir dir;
   std::string path(const std::string& name) const { return (dir / name).string(); }
   Streams run(const std::string& arguments) const {
-    const std::string command = std::string(PARTREG_EXECUTABLE) + " " + arguments + " >" + path("stdout.txt") +
-                                " 2>" + path("stderr.txt") + " </dev/null";
+    const std::string command = std::string(PARTREG_EXECUTABLE) + " " + arguments + " >" +
+                                path("stdout.txt") + " 2>" + path("stderr.txt") + " </dev/null";
     const int status = std::system(command.c_str());
     return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, read_text(dir / "stdout.txt"),
             read_text(dir / "stderr.txt")};
@@ -110,8 +109,10 @@ TEST_F(Progress, QuietPrintsNothingButAnError) {
 
 TEST_F(Progress, VerboseCpdLogsEveryIteration) {
   make_mugs();
-  const std::string pair = path("mugs/ground_truth/mug_000.ply") + " " + path("mugs/ground_truth/mug_001.ply");
-  const Streams verbose = run("cpd " + pair + " --out " + path("a.ply") + " --json " + path("a.json") + " -v");
+  const std::string pair =
+      path("mugs/ground_truth/mug_000.ply") + " " + path("mugs/ground_truth/mug_001.ply");
+  const Streams verbose =
+      run("cpd " + pair + " --out " + path("a.ply") + " --json " + path("a.json") + " -v");
   ASSERT_EQ(verbose.exit_code, 0) << verbose.err;
   const int iterations = nlohmann::json::parse(read_text(dir / "a.json"))["iterations"];
   int iteration_lines = 0;
@@ -127,7 +128,7 @@ TEST_F(Progress, VerboseCpdLogsEveryIteration) {
 }
 
 TEST_F(Progress, EveryCommandTakesQuietAndVerbose) {
-  std::vector<std::string> commands = {"cpd",   "train", "info", "synth", "label",
+  std::vector<std::string> commands = {"cpd",      "train", "info", "synth", "label",
                                        "register", "views", "eval", "report"};
 #ifdef PARTREG_GUI_EXECUTABLE  // built with ui/: the render commands exist too
   commands.insert(commands.end(), {"render", "figure"});

@@ -47,7 +47,8 @@ TEST(CpdRepeatability, TheSameBitsWhereverTheHeapPutsItsBuffers) {
   // Allocations of odd sizes kept alive shift where the E-step's buffers land (to any 16-byte offset).
   std::vector<std::unique_ptr<char[]>> held;
   for (int shift = 1; shift <= 6; ++shift) {
-    for (int i = 0; i < 40; ++i) held.emplace_back(new char[static_cast<std::size_t>(16 * shift + 8 * i + 1)]);
+    for (int i = 0; i < 40; ++i)
+      held.emplace_back(new char[static_cast<std::size_t>(16 * shift + 8 * i + 1)]);
     EXPECT_EQ(nonrigid(pair, 1), first) << "after allocation round " << shift;
   }
 }

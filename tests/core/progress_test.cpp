@@ -1,4 +1,5 @@
-// Progress reports of the library (core/progress.hpp): the counter, a registration's spaces, CPD's iterations.
+// Progress reports of the library (core/progress.hpp): the counter, a registration's spaces, CPD's
+// iterations.
 #include "partreg/core/progress.hpp"
 
 #include <gtest/gtest.h>
@@ -34,7 +35,8 @@ TEST(ProgressCounter, CountsStepsFromSeveralThreadsOneReportAtATime) {
 TEST(Progress, ARegistrationReportsEachSpaceItFits) {
   std::vector<TrainingInstance> training;
   for (const SyntheticInstance& mug : make_synthetic_category(SyntheticCategory::mug, 4, 7)) {
-    const SurfaceSamples samples = sample_correspondences(SyntheticCategory::mug, mug.shape_parameters, 800, 3);
+    const SurfaceSamples samples =
+        sample_correspondences(SyntheticCategory::mug, mug.shape_parameters, 800, 3);
     training.push_back({mug.name, samples.points, samples.part, {}, {}});
   }
   TrainingSettings settings;
@@ -42,8 +44,8 @@ TEST(Progress, ARegistrationReportsEachSpaceItFits) {
   const CategoryModel model = train_category("mugs", training, {"body", "handle"}, settings);
   const Points observed = training.back().points;
   // holistic: 1 step; partwise: one per part; hol+part: the whole object, then each part.
-  for (const auto& [variant, steps] :
-       std::vector<std::pair<Variant, std::size_t>>{{Variant::holistic, 1}, {Variant::partwise, 2}, {Variant::hol_part, 3}}) {
+  for (const auto& [variant, steps] : std::vector<std::pair<Variant, std::size_t>>{
+           {Variant::holistic, 1}, {Variant::partwise, 2}, {Variant::hol_part, 3}}) {
     RegistrationSettings registration;
     registration.variant = variant;
     std::vector<Progress> reports;
@@ -60,8 +62,10 @@ TEST(Progress, ARegistrationReportsEachSpaceItFits) {
 
 TEST(Progress, CpdReportsEveryIterationAgainstItsCap) {
   const auto mugs = make_synthetic_category(SyntheticCategory::mug, 2, 5);
-  const Points source = sample_correspondences(SyntheticCategory::mug, mugs[0].shape_parameters, 400, 1).points;
-  const Points target = sample_correspondences(SyntheticCategory::mug, mugs[1].shape_parameters, 400, 2).points;
+  const Points source =
+      sample_correspondences(SyntheticCategory::mug, mugs[0].shape_parameters, 400, 1).points;
+  const Points target =
+      sample_correspondences(SyntheticCategory::mug, mugs[1].shape_parameters, 400, 2).points;
   NonrigidCpdSettings settings;
   settings.max_iterations = 60;
   std::vector<Progress> reports;

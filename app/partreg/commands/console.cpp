@@ -47,8 +47,8 @@ void set_quiet() {
 
 void add_verbosity_flags(CLI::App& app) {
   for (CLI::App* command : app.get_subcommands({})) {
-    CLI::Option* quiet =
-        command->add_flag_callback("-q,--quiet", set_quiet, "print nothing on stderr but an error's one line");
+    CLI::Option* quiet = command->add_flag_callback("-q,--quiet", set_quiet,
+                                                    "print nothing on stderr but an error's one line");
     command
         ->add_flag_callback(
             "-v,--verbose", [] { console().verbosity = Verbosity::verbose; },
@@ -126,8 +126,9 @@ void ProgressDisplay::operator()(const core::Progress& progress) {
     return;
   }
   const int percent = progress.total > 0 ? static_cast<int>(100 * progress.fraction()) : 0;
-  const bool count_due = counted && (verbose || (style_.log_every_percent > 0 &&
-                                                 (percent >= next_percent_ || progress.done == progress.total)));
+  const bool count_due =
+      counted && (verbose || (style_.log_every_percent > 0 &&
+                              (percent >= next_percent_ || progress.done == progress.total)));
   if (show_line)
     std::cerr << (counted ? "[" + status(progress) + "] " : "") << progress.line << '\n';
   else if (count_due)

@@ -345,8 +345,8 @@ namespace {
 void report_iteration(const EmControl& control, int iteration, double sigma2, double change) {
   std::ostringstream line;
   line << "iteration " << iteration << ": sigma2 " << sigma2 << ", relative change " << change;
-  control.progress(Progress{static_cast<std::size_t>(iteration), static_cast<std::size_t>(control.max_iterations),
-                            line.str(), /*bounded=*/true});
+  const auto cap = static_cast<std::size_t>(control.max_iterations);
+  control.progress(Progress{static_cast<std::size_t>(iteration), cap, line.str(), /*bounded=*/true});
 }
 
 }  // namespace

@@ -137,7 +137,8 @@ FitStatistics fit_statistics(const Points& deformed, const Points& observed, dou
 }  // namespace
 
 RegistrationResult register_observation(const CategoryModel& model, const Points& observed,
-                                        const RegistrationSettings& settings, const ProgressListener& progress) {
+                                        const RegistrationSettings& settings,
+                                        const ProgressListener& progress) {
   const auto start = std::chrono::steady_clock::now();
   validate(settings);
   if (settings.variant != Variant::holistic && !model.has_parts())

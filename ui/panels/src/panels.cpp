@@ -322,7 +322,8 @@ void draw_panels(const AppState& state, PanelState& panel, std::vector<Command>&
   }
   // A running training's and registration's progress (whichever tab is open), the screenshot row and the
   // status line at the bottom of the column.
-  const float rows = 1.0f + (state.training.running ? 1.0f : 0.0f) + (state.registering.running ? 1.0f : 0.0f);
+  const float rows =
+      1.0f + (state.training.running ? 1.0f : 0.0f) + (state.registering.running ? 1.0f : 0.0f);
   ImGui::SetCursorPosY(io.DisplaySize.y - ImGui::GetTextLineHeightWithSpacing() * 2.5f -
                        ImGui::GetFrameHeightWithSpacing() * rows);
   for (const JobProgress* job : {&state.training, &state.registering})
