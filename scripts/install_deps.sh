@@ -10,7 +10,7 @@ packages=(
   libembree-dev libtbb-dev libcairo2-dev libstb-dev
   libosmesa6-dev libglfw3-dev libimgui-dev python3-glad xvfb xauth
   clang-14 libclang-rt-14-dev
-  parallel
+  parallel slurmctld slurmd slurm-client munge
   pybind11-dev python3-dev python3-pytest python3-numpy python3-open3d
 )
 missing=()

@@ -35,6 +35,14 @@ struct Cancelled : std::exception {
 
 }  // namespace
 
+core::ProgressListener SharedProgress::listener(const std::shared_ptr<SharedProgress>& shared) {
+  return [shared](const core::Progress& step) {
+    const std::lock_guard<std::mutex> lock(shared->mutex);
+    shared->progress.fraction = step.fraction();
+    shared->progress.line = step.line;
+  };
+}
+
 void BackgroundRegistration::start(ui::AppState& state, const ui::Command& command) {
   if (running_.valid()) {
     report(state, "a registration is already running", true);
@@ -42,13 +50,22 @@ void BackgroundRegistration::start(ui::AppState& state, const ui::Command& comma
   }
   job_ = prepared(state, [&] { return ui::prepare_registration(state, command); });
   if (!job_) return;
-  running_ = std::async(std::launch::async, [job = *job_] { return job.run(); });
+  shared_ = std::make_shared<SharedProgress>();
+  shared_->progress = {true, 0.0, "registering (" + core::enum_name(job_->settings.variant) + ")"};
+  state.registering = shared_->progress;
+  running_ = std::async(std::launch::async, [job = *job_, listener = SharedProgress::listener(shared_)] {
+    return job.run(listener);
+  });
   started_ = std::chrono::steady_clock::now();
   report(state, "registering (" + core::enum_name(job_->settings.variant) + ")...", false);
 }
 
 void BackgroundRegistration::collect(ui::AppState& state) {
   if (!running_.valid()) return;
+  {
+    const std::lock_guard<std::mutex> lock(shared_->mutex);
+    state.registering = shared_->progress;
+  }
   if (running_.wait_for(std::chrono::seconds(0)) != std::future_status::ready) {
     const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - started_).count();
     char text[96];
@@ -57,6 +74,7 @@ void BackgroundRegistration::collect(ui::AppState& state) {
     report(state, text, false);
     return;
   }
+  state.registering = ui::JobProgress{};
   try {
     core::RegistrationResult result = running_.get();
     if (state.shapes.model != job_->model) {  // another model was loaded meanwhile: the result is stale

@@ -18,20 +18,30 @@
 
 namespace partreg::app {
 
+/// A job's progress as its worker thread reports it and the UI thread reads it.
+struct SharedProgress {
+  std::mutex mutex;
+  ui::JobProgress progress;
+  /// A listener that stores each report here (to be called on the worker).
+  static core::ProgressListener listener(const std::shared_ptr<SharedProgress>& shared);
+};
+
 /// A `register` command on its own thread; its result enters the state when it is ready.
 class BackgroundRegistration {
  public:
   /// Starts the registration, or reports in the status line why it cannot (one already runs, bad options).
   void start(ui::AppState& state, const ui::Command& command);
-  /// While it runs: its elapsed time in the status line (its length is not known ahead: the solver stops
-  /// when the cost settles). When it has ended: applies its result (unless another model was loaded
-  /// meanwhile) or reports its failure. Call once a frame.
+  /// While it runs: the spaces fitted so far in state.registering and its elapsed time in the status line
+  /// (the time of each fit is not known ahead: the solver stops when the cost settles). When it has ended:
+  /// applies its result (unless another model was loaded meanwhile) or reports its failure. Call once a
+  /// frame.
   void collect(ui::AppState& state);
   /// True from start() until collect() has taken the result (the window keeps drawing meanwhile).
   bool running() const { return running_.valid(); }
 
  private:
   std::optional<ui::RegistrationJob> job_;
+  std::shared_ptr<SharedProgress> shared_;
   std::future<core::RegistrationResult> running_;
   std::chrono::steady_clock::time_point started_;
 };

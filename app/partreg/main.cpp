@@ -3,12 +3,14 @@
 #include <iostream>
 
 #include "partreg/commands/commands.hpp"
+#include "partreg/commands/console.hpp"
 #include "partreg/core/errors.hpp"
 #include "partreg/version.hpp"
 
 namespace {
 
 int fail(const char* what, int code) {
+  partreg::app::restore_error_stream();  // --quiet still shows the error
   std::cerr << "partreg: " << what << '\n';
   return code;
 }
@@ -30,6 +32,7 @@ int main(int argc, char** argv) {
 #endif
   partreg::app::add_views_command(app);
   partreg::app::add_eval_command(app);
+  partreg::app::add_verbosity_flags(app);  // after every subcommand: it adds the flags to each
 
   try {
     app.parse(argc, argv);

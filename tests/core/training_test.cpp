@@ -101,8 +101,8 @@ TEST(Training, KeepsEachInstancesFieldAndLatentsAndReportsMonotoneProgressToTheE
   // same lines.
   ASSERT_EQ(steps.size(), 12u);
   for (std::size_t i = 0; i < steps.size(); ++i) {
-    EXPECT_EQ(steps[i].total, 12);
-    EXPECT_EQ(steps[i].done, static_cast<int>(i) + 1);
+    EXPECT_EQ(steps[i].total, 12u);
+    EXPECT_EQ(steps[i].done, i + 1);
     if (i > 0) EXPECT_GT(steps[i].fraction(), steps[i - 1].fraction());
   }
   EXPECT_EQ(steps.back().fraction(), 1.0);

@@ -31,12 +31,23 @@ TEST(BackgroundRegistration, RunsOffTheCallingThreadAndAppliesItsResult) {
   registration.start(state, ui::make_command("register", {"hol+part"}));
   ASSERT_TRUE(registration.running()) << state.status;
   EXPECT_NE(state.status.find("registering (hol+part)"), std::string::npos) << state.status;
+  EXPECT_TRUE(state.registering.running);  // the panels draw its progress bar
   EXPECT_FALSE(state.registration.result);  // nothing enters the state before collect() sees it end
   collect_until_done(registration, state);
   ASSERT_FALSE(registration.running());
+  EXPECT_FALSE(state.registering.running);
   ASSERT_TRUE(state.registration.result) << state.status;
   EXPECT_EQ(state.registration.settings.variant, core::Variant::hol_part);
   EXPECT_NE(state.status.find("registered (hol+part)"), std::string::npos) << state.status;
+}
+
+TEST(SharedProgress, KeepsTheLastReportForTheUiThread) {
+  const auto shared = std::make_shared<SharedProgress>();
+  const core::ProgressListener listener = SharedProgress::listener(shared);
+  listener(core::Progress{1, 3, "fitted holistic"});
+  listener(core::Progress{2, 3, "fitted handle"});
+  EXPECT_NEAR(shared->progress.fraction, 2.0 / 3.0, 1e-12);
+  EXPECT_EQ(shared->progress.line, "fitted handle");
 }
 
 TEST(BackgroundRegistration, AResultForAModelNoLongerLoadedIsDiscarded) {

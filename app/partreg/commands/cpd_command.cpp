@@ -6,6 +6,7 @@
 
 #include "partreg/commands/commands.hpp"
 #include "partreg/commands/common.hpp"
+#include "partreg/commands/console.hpp"
 #include "partreg/commands/registration_flags.hpp"
 #include "partreg/core/cpd.hpp"
 #include "partreg/core/errors.hpp"
@@ -54,7 +55,8 @@ struct Registered {
   nlohmann::json report;
 };
 
-Registered run_mode(const CpdOptions& options, const core::Points& source, const core::Points& target) {
+Registered run_mode(const CpdOptions& options, const core::Points& source, const core::Points& target,
+                    const core::ProgressListener& progress) {
   const auto& s = options.nonrigid;
   if (options.mode == "rigid") {
     core::RigidCpdSettings settings;
@@ -62,6 +64,7 @@ Registered run_mode(const CpdOptions& options, const core::Points& source, const
     settings.tolerance = s.tolerance;
     settings.max_iterations = s.max_iterations;
     settings.estimate_scale = options.scale;
+    settings.progress = progress;
     const auto result = core::register_rigid(source, target, settings);
     auto report = common_json(options, result.sigma2, result.iterations, result.stop_reason, result.seconds);
     report["T_target_source"] = matrix_json(result.T_target_source());
@@ -73,6 +76,7 @@ Registered run_mode(const CpdOptions& options, const core::Points& source, const
     settings.outlier_weight = s.outlier_weight;
     settings.tolerance = s.tolerance;
     settings.max_iterations = s.max_iterations;
+    settings.progress = progress;
     const auto result = core::register_affine(source, target, settings);
     auto report = common_json(options, result.sigma2, result.iterations, result.stop_reason, result.seconds);
     Eigen::Matrix4d transform = Eigen::Matrix4d::Identity();
@@ -83,6 +87,7 @@ Registered run_mode(const CpdOptions& options, const core::Points& source, const
   }
   core::NonrigidCpdSettings settings = s;
   if (options.exact) settings.solver = core::NonrigidCpdSettings::Solver::exact;
+  settings.progress = progress;
   const auto result = core::register_nonrigid(source, target, settings);
   auto report = common_json(options, result.sigma2, result.iterations, result.stop_reason, result.seconds);
   report["settings"]["beta"] = s.beta;
@@ -101,7 +106,11 @@ void run_cpd(const CpdOptions& options) {
       read_points_logged(options.source_path, options.points, options.seed, options.exact_points);
   const core::Points target =
       read_points_logged(options.target_path, options.points, options.seed + 1, options.exact_points);
-  const Registered registered = run_mode(options, source, target);
+  // A bar over EM's iteration cap on a terminal (EM usually stops before it); each iteration's sigma2 with
+  // --verbose.
+  ProgressDisplay progress({"EM iterations", /*lines_are_detail=*/true, /*log_every_percent=*/0});
+  const Registered registered = run_mode(options, source, target, progress.listener());
+  progress.finish();
   const auto& report = registered.report;
   std::cerr << "cpd " << options.mode << ": " << source.rows() << " -> " << target.rows() << " points, "
             << report["iterations"] << " iterations (" << report["stop_reason"].get<std::string>()

@@ -1,8 +1,6 @@
 // `partreg eval DATASET --out DIR`: the paper's evaluation protocol on a category, with CSV, tables and
 // plots. `partreg report CSV... --out DIR`: the same tables and plots from one or more runs (shards,
 // categories).
-#include <unistd.h>
-
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -15,6 +13,7 @@
 
 #include "partreg/commands/commands.hpp"
 #include "partreg/commands/common.hpp"
+#include "partreg/commands/console.hpp"
 #include "partreg/commands/registration_flags.hpp"
 #include "partreg/core/errors.hpp"
 #include "partreg/core/parallel.hpp"
@@ -40,39 +39,6 @@ struct EvalOptions {
   bool wide_rotation = false;
   io::DatasetOptions dataset;
   eval::EvalSettings settings;
-};
-
-std::string clock_text(double seconds) {
-  const long s = std::lround(seconds);
-  std::ostringstream out;
-  out << s / 60 << ':' << std::setw(2) << std::setfill('0') << s % 60;
-  return out.str();
-}
-
-// A progress bar with the time left on a terminal; a line every 5% otherwise (logs stay short).
-class ProgressBar {
- public:
-  void operator()(std::size_t done, std::size_t total, const std::string& line) {
-    const bool terminal = ::isatty(2);
-    if (!line.empty()) std::cerr << (terminal && drawn_ ? "\n" : "") << line << '\n';
-    if (total == 0 || done == 0) return;
-    const int percent = static_cast<int>(100 * done / total);
-    if (!terminal && percent < next_percent_ && done != total) return;
-    next_percent_ = percent + 5;
-    const double elapsed = std::chrono::duration<double>(Clock::now() - start_).count();
-    const double left = elapsed / double(done) * double(total - done);
-    const int filled = percent * 30 / 100;
-    std::cerr << (terminal ? "\r" : "") << '[' << std::string(filled, '#') << std::string(30 - filled, '.')
-              << "] " << done << '/' << total << " rows, " << clock_text(elapsed) << " elapsed, ~"
-              << clock_text(left) << " left" << (terminal ? "" : "\n") << std::flush;
-    drawn_ = terminal;
-    if (terminal && done == total) std::cerr << '\n';
-  }
-
- private:
-  Clock::time_point start_ = Clock::now();
-  int next_percent_ = 0;
-  bool drawn_ = false;
 };
 
 void parse_shard(const std::string& text, eval::EvalSettings& settings) {
@@ -187,8 +153,10 @@ void run_eval(EvalOptions& options) {
     throw UsageError(std::string("--folds: ") + error.what());
   }
   const auto start = Clock::now();
-  ProgressBar progress;
-  const std::vector<eval::EvalRow> rows = eval::run_evaluation(input, options.settings, std::ref(progress));
+  // The time left counts registrations only: the folds' training is reported `aside`.
+  ProgressDisplay progress({"rows", /*lines_are_detail=*/false, /*log_every_percent=*/5});
+  const std::vector<eval::EvalRow> rows = eval::run_evaluation(input, options.settings, progress.listener());
+  progress.finish();
   const double seconds = std::chrono::duration<double>(Clock::now() - start).count();
   write_reports(folder.staging(), rows);
   // Registrations only: the baseline rows have their own times (tables.md).

@@ -6,6 +6,7 @@
 
 #include "partreg/commands/commands.hpp"
 #include "partreg/commands/common.hpp"
+#include "partreg/commands/console.hpp"
 #include "partreg/commands/registration_flags.hpp"
 #include "partreg/core/deformation.hpp"
 #include "partreg/core/errors.hpp"
@@ -124,7 +125,10 @@ void run_register(const RegisterOptions& options) {
       options.frames_path.empty() ? std::vector<core::Frame>{} : io::read_frames_file(options.frames_path);
   const core::CategoryModel model = io::read_model(options.model_path);
   const core::Points observed = read_points_logged(options.observed_path, options.mesh_samples, 1);
-  const core::RegistrationResult result = core::register_observation(model, observed, options.settings);
+  ProgressDisplay progress({"spaces fitted", /*lines_are_detail=*/true, /*log_every_percent=*/0});
+  const core::RegistrationResult result =
+      core::register_observation(model, observed, options.settings, progress.listener());
+  progress.finish();
   for (const core::SpaceFit& fit : result.fits)
     std::cerr << "space " << fit.space << ": " << fit.iterations << " steps ("
               << core::enum_name(fit.stop_reason) << "), cost " << fit.cost << ", " << fit.seconds << " s\n";

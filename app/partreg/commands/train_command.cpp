@@ -5,6 +5,7 @@
 
 #include "partreg/commands/commands.hpp"
 #include "partreg/commands/common.hpp"
+#include "partreg/commands/console.hpp"
 #include "partreg/commands/registration_flags.hpp"
 #include "partreg/core/errors.hpp"
 #include "partreg/core/parallel.hpp"
@@ -85,9 +86,11 @@ void run_train(TrainOptions& options) {
                 << " points: the model uses all of them\n";
 
   core::TrainingReport report;
-  const core::CategoryModel model =
-      core::train_category(dataset.name, dataset.instances, dataset.part_names, options.settings, &report,
-                           [](const std::string& line) { std::cerr << line << '\n'; });
+  // One line per CPD and per PCA-EM, with the count and the time left (above a bar on a terminal).
+  ProgressDisplay progress({"training steps", /*lines_are_detail=*/false, /*log_every_percent=*/0});
+  const core::CategoryModel model = core::train_category(dataset.name, dataset.instances, dataset.part_names,
+                                                         options.settings, &report, progress.listener());
+  progress.finish();
   io::write_model(options.out_path, model);
   print_summary(model, report);
   std::cerr << "wrote " << options.out_path << '\n';

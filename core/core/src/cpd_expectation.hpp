@@ -61,6 +61,7 @@ struct EmControl {
   EStepSettings e_step;
   double tolerance = 1e-6;
   int max_iterations = 150;
+  ProgressListener progress;  ///< after every iteration (the settings' own listener)
 };
 
 struct EmOutcome {

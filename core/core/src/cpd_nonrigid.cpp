@@ -106,6 +106,7 @@ NonrigidCpdResult register_nonrigid(const Points& source_in, const Points& targe
   control.e_step.cell_size = settings.cell_size;
   control.tolerance = settings.tolerance;
   control.max_iterations = settings.max_iterations;
+  control.progress = settings.progress;
   const auto outcome =
       detail::run_em(target, moved, control, [&](const detail::Expectation& e, double sigma2) {
         const double regulariser = settings.lambda * sigma2;

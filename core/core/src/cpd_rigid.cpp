@@ -40,6 +40,7 @@ detail::EmControl control_of(const Settings& settings) {
   control.e_step.cell_size = settings.cell_size;
   control.tolerance = settings.tolerance;
   control.max_iterations = settings.max_iterations;
+  control.progress = settings.progress;
   return control;
 }
 

@@ -143,7 +143,8 @@ RegistrationSettings with_model_defaults(RegistrationSettings settings, const Ca
 }
 
 RegistrationResult register_observation(const CategoryModel& model, const Points& observed,
-                                        const RegistrationSettings& request) {
+                                        const RegistrationSettings& request,
+                                        const ProgressListener& progress) {
   const auto start = std::chrono::steady_clock::now();
   validate(request);
   const RegistrationSettings settings = with_model_defaults(request, model);
@@ -157,6 +158,8 @@ RegistrationResult register_observation(const CategoryModel& model, const Points
   const Eigen::Vector3d centre =
       holistic.deformed(Eigen::VectorXd::Zero(holistic.dimensions())).colwise().mean().transpose();
   const std::vector<Pose> poses = detail::starting_poses(centre, model.canonical, observation, settings);
+  const std::size_t parts_fitted = settings.variant == Variant::holistic ? 0 : model.spaces.size() - 1;
+  ProgressCounter fitted(parts_fitted + (settings.variant == Variant::partwise ? 0 : 1), progress);
 
   RegistrationResult result;
   result.variant = settings.variant;
@@ -166,6 +169,7 @@ RegistrationResult register_observation(const CategoryModel& model, const Points
     const detail::SearchOutcome search = detail::search_poses(
         holistic, normals, observation, poses, Eigen::VectorXd::Zero(holistic.dimensions()), settings);
     record(result, holistic.name, search, model, centroid);
+    fitted.step("fitted " + holistic.name);
     whole = search.best;
     deformed_normalised = whole.pose.apply(holistic.deformed(whole.latent));
   }
@@ -202,6 +206,7 @@ RegistrationResult register_observation(const CategoryModel& model, const Points
             if (settings.variant == Variant::partwise) {
               parts[p - 1] = detail::search_poses(space, part_normals, observation, part_poses,
                                                   Eigen::VectorXd::Zero(space.dimensions()), part_settings);
+              fitted.step("fitted " + space.name);
               continue;
             }
             const Observation& own = part_observations[p].tree ? part_observations[p] : observation;
@@ -211,6 +216,7 @@ RegistrationResult register_observation(const CategoryModel& model, const Points
             const Eigen::VectorXd latent =
                 space.project_displacement(rows_of(holistic_displacement, space.point_indices));
             parts[p - 1] = detail::search_poses(space, part_normals, own, {whole.pose}, latent, own_settings);
+            fitted.step("fitted " + space.name);
           }
         },
         0, 1);

@@ -45,21 +45,8 @@ void check_instances(const std::vector<TrainingInstance>& instances,
   }
 }
 
-// Counts the steps of training and tells the caller after each one.
-class StepCounter {
- public:
-  StepCounter(int total, const TrainingProgressCallback& callback) : total_(total), callback_(callback) {}
-  bool wanted() const { return static_cast<bool>(callback_); }
-  void step(const std::string& line) {
-    ++done_;
-    if (callback_) callback_(TrainingProgress{done_, total_, line});
-  }
-
- private:
-  int done_ = 0;
-  int total_ = 0;
-  const TrainingProgressCallback& callback_;
-};
+// Training's steps (CPDs and PCA-EMs), reported to the caller after each one.
+using StepCounter = ProgressCounter;
 
 struct CpdRun {
   Points weights;
@@ -278,7 +265,7 @@ CategoryModel train_category(const std::string& category, const std::vector<Trai
     throw InputError("the canonical instance '" + canonical.name + "' has no part labels");
 
   const int spaces = 1 + static_cast<int>(part_names.size());
-  StepCounter progress(static_cast<int>(instances.size()) * spaces, steps);
+  StepCounter progress(instances.size() * static_cast<std::size_t>(spaces), steps);
   CategoryModel model;
   model.category = category;
   model.part_names = part_names;

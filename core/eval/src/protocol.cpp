@@ -80,7 +80,7 @@ std::vector<core::Variant> usable_variants(const EvalInput& input, const EvalSet
     const bool needs_parts = variant != core::Variant::holistic;
     if (needs_parts && input.part_names.empty()) {
       if (progress)
-        progress(0, 0, input.category + " has no parts: " + core::enum_name(variant) + " is not run");
+        progress({0, 0, input.category + " has no parts: " + core::enum_name(variant) + " is not run"});
       continue;
     }
     if (std::find(variants.begin(), variants.end(), variant) == variants.end()) variants.push_back(variant);
@@ -106,7 +106,7 @@ TestCase make_test_case(const EvalInput& input, std::size_t index, int fold, con
     View view = caster.cast(directions[v], settings.camera);
     if (view.points.rows() < 30) {
       if (progress)
-        progress(0, 0, instance.name + ": view " + std::to_string(v) + " sees too little, skipped");
+        progress({0, 0, instance.name + ": view " + std::to_string(v) + " sees too little, skipped"});
       continue;
     }
     Observation observation{static_cast<int>(v), view.direction, std::move(view.points), std::nullopt};
@@ -343,7 +343,7 @@ std::vector<EvalRow> run_evaluation(const EvalInput& input, const EvalSettings& 
       line << "fold " << fold << ": trained on " << model.training.instances.size() << " instances in "
            << std::chrono::duration<double>(Clock::now() - start).count() << " s (canonical "
            << model.training.canonical << ")";
-      progress(done, total, line.str());
+      progress({done, total, line.str(), /*bounded=*/false, /*aside=*/true});
     }
     for (const TestCase& test : tests) {
       const std::optional<core::Points> correspondents =
@@ -359,7 +359,7 @@ std::vector<EvalRow> run_evaluation(const EvalInput& input, const EvalSettings& 
           const std::size_t now = done += per_job;
           if (progress) {
             const std::lock_guard<std::mutex> lock(progress_mutex);
-            progress(now, total, "");
+            progress({now, total, ""});
           }
         });
       });

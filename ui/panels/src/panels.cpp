@@ -320,14 +320,15 @@ void draw_panels(const AppState& state, PanelState& panel, std::vector<Command>&
     }
     ImGui::EndTabBar();
   }
-  // A running training's progress (whichever tab is open), the screenshot row and the status line at the
-  // bottom of the column.
-  const float rows = state.training.running ? 2.0f : 1.0f;
+  // A running training's and registration's progress (whichever tab is open), the screenshot row and the
+  // status line at the bottom of the column.
+  const float rows =
+      1.0f + (state.training.running ? 1.0f : 0.0f) + (state.registering.running ? 1.0f : 0.0f);
   ImGui::SetCursorPosY(io.DisplaySize.y - ImGui::GetTextLineHeightWithSpacing() * 2.5f -
                        ImGui::GetFrameHeightWithSpacing() * rows);
-  if (state.training.running)
-    ImGui::ProgressBar(static_cast<float>(state.training.fraction), ImVec2(-1.0f, 0.0f),
-                       state.training.line.c_str());
+  for (const JobProgress* job : {&state.training, &state.registering})
+    if (job->running)
+      ImGui::ProgressBar(static_cast<float>(job->fraction), ImVec2(-1.0f, 0.0f), job->line.c_str());
   input_text("##screenshot", panel.screenshot_path);
   ImGui::SameLine();
   if (ImGui::Button("Screenshot")) emit(out, "screenshot", {panel.screenshot_path});

@@ -12,6 +12,7 @@
 #include <Eigen/Geometry>
 
 #include "partreg/core/normalization.hpp"
+#include "partreg/core/progress.hpp"
 #include "partreg/core/types.hpp"
 
 namespace partreg::core {
@@ -31,6 +32,9 @@ struct RigidCpdSettings {
   bool exact_e_step = false;  ///< E-step over every pair (the reference); else the fast one (docs/cpd.md)
   double truncation = 1e-8;   ///< fast E-step: kernel values below this are skipped (as non-rigid)
   double cell_size = 0.5;     ///< fast E-step: voxel cell edge in units of sigma (as non-rigid)
+  /// Called after every EM iteration: done = iterations so far, total = max_iterations (bounded: EM usually
+  /// converges before), line = sigma2 and the relative change (core/progress.hpp).
+  ProgressListener progress;
 };
 
 /// Rigid result: target ~ scale * rotation * source + translation.
@@ -57,6 +61,9 @@ struct AffineCpdSettings {
   bool exact_e_step = false;    ///< E-step over every pair (the reference); else the fast one
   double truncation = 1e-8;     ///< fast E-step: kernel values below this are skipped (as non-rigid)
   double cell_size = 0.5;       ///< fast E-step: voxel cell edge in units of sigma (as non-rigid)
+  /// Called after every EM iteration: done = iterations so far, total = max_iterations (bounded: EM usually
+  /// converges before), line = sigma2 and the relative change (core/progress.hpp).
+  ProgressListener progress;
 };
 
 /// Affine result: target ~ linear * source + translation.
@@ -93,6 +100,9 @@ struct NonrigidCpdSettings {
   /// reference the fast E-step is tested against at sizes where the exact solver's M x M solve is too slow.
   bool exact_e_step = false;
   int threads = 0;  ///< E-step threads; 0 = all cores
+  /// Called after every EM iteration: done = iterations so far, total = max_iterations (bounded: EM usually
+  /// converges before), line = sigma2 and the relative change (core/progress.hpp).
+  ProgressListener progress;
 };
 
 /// Non-rigid result: moved = source + G(source, source) W, with W in CPD's working frame.

@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "partreg/core/category_model.hpp"
+#include "partreg/core/progress.hpp"
 #include "partreg/core/registration_settings.hpp"
 
 namespace partreg::core {
@@ -81,8 +82,10 @@ RegistrationSettings with_model_defaults(RegistrationSettings settings, const Ca
 /// Registers `model` to `observed` (data units, any frame near the category's). Throws InputError for fewer
 /// than 10 finite points or an observation wildly out of scale with the model; UsageError for a part-based
 /// variant on a model without parts or settings out of range (validate()). Parallel parts use the calling
-/// thread's budget (parallel.hpp).
+/// thread's budget (parallel.hpp). `progress` hears of each space fitted (holistic, then the parts as they
+/// finish): 1, P or 1 + P steps for holistic, partwise and hol+part.
 RegistrationResult register_observation(const CategoryModel& model, const Points& observed,
-                                        const RegistrationSettings& settings = {});
+                                        const RegistrationSettings& settings = {},
+                                        const ProgressListener& progress = {});
 
 }  // namespace partreg::core

@@ -13,6 +13,7 @@
 
 #include "partreg/core/category_model.hpp"
 #include "partreg/core/cpd.hpp"
+#include "partreg/core/progress.hpp"
 
 namespace partreg::core {
 
@@ -67,19 +68,13 @@ struct TrainingReport {
 /// Called with one line of progress (for example after each CPD).
 using ProgressCallback = std::function<void(const std::string&)>;
 
-/// Progress with a known end. Training counts K (1 + P) equal steps for K instances and P parts: one CPD per
-/// instance other than the canonical and per space, and one PCA-EM per space. The last report has
-/// done == total.
-struct TrainingProgress {
-  int done = 0;      ///< steps finished
-  int total = 0;     ///< steps in all
-  std::string line;  ///< what the last step did (as ProgressCallback gets it)
-  /// done / total in [0, 1] (0 while total is 0).
-  double fraction() const { return total > 0 ? static_cast<double>(done) / total : 0.0; }
-};
+/// Training's progress (core/progress.hpp) has a known end: K (1 + P) equal steps for K instances and P
+/// parts, one CPD per instance other than the canonical and per space, and one PCA-EM per space. Each
+/// report's line is what that step did (as ProgressCallback gets it); the last report has done == total.
+using TrainingProgress = Progress;
 
 /// Called after each training step with how far training is.
-using TrainingProgressCallback = std::function<void(const TrainingProgress&)>;
+using TrainingProgressCallback = ProgressListener;
 
 /// The instance every other one is closest to on average (symmetric Chamfer distance of FPS samples):
 /// a cheap stand-in for "reached with least deformation" (see docs/training.md). Returns its index.

@@ -83,8 +83,9 @@ struct EvalRow {
   double seconds = 0.0;  ///< registration time (a baseline's: its alignment and scoring)
 };
 
-/// Progress: rows done, rows planned, and a line worth logging (empty when there is none).
-using EvalProgress = std::function<void(std::size_t done, std::size_t total, const std::string& line)>;
+/// Progress (core/progress.hpp): rows done, rows planned, and a line worth logging (empty when there is
+/// none). The report after a fold's training has `aside` set: time-left estimates leave training out.
+using EvalProgress = core::ProgressListener;
 
 /// The level indices (into sweep_levels(kind)) the protocol runs for a sweep of `kind`.
 std::vector<int> planned_levels(Perturbation kind, const Protocol& protocol);

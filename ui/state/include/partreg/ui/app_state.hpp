@@ -107,6 +107,7 @@ struct AppState {
   ShapeDocument shapes;
   RegistrationDocument registration;
   JobProgress training;  ///< a `train` from the panels running in the window (scripts train synchronously)
+  JobProgress registering;  ///< a `register` from the panels running in the window (spaces fitted so far)
   std::string status;    ///< the last command's message
   bool status_is_error = false;
   bool quit_requested = false;

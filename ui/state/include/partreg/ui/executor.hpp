@@ -44,8 +44,10 @@ struct RegistrationJob {
   std::shared_ptr<const core::CategoryModel> model;
   core::Points observed;  ///< data units
   core::RegistrationSettings settings;
-  /// Runs the registration (the slow part; touches no state).
-  core::RegistrationResult run() const { return core::register_observation(*model, observed, settings); }
+  /// Runs the registration (the slow part; touches no state), telling `progress` of each space fitted.
+  core::RegistrationResult run(const core::ProgressListener& progress = {}) const {
+    return core::register_observation(*model, observed, settings, progress);
+  }
 };
 
 /// Checks a `register` command against the state and prepares its job (UsageError when no model or no
