@@ -326,7 +326,7 @@ namespace partreg::core::detail {
 EmOutcome run_em(const Points& target, Points& moved, const EmControl& control,
                  const std::function<double(const Expectation&, double sigma2)>& m_step) {
   EmOutcome outcome;
-  double sigma2 = initial_sigma2(moved, target);
+  double sigma2 = control.initial_sigma2 > 0.0 ? control.initial_sigma2 : initial_sigma2(moved, target);
   if (!(sigma2 > 0.0)) {
     outcome.stop_reason = CpdStopReason::degenerate;
     return outcome;

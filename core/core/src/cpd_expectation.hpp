@@ -61,6 +61,9 @@ struct EmControl {
   EStepSettings e_step;
   double tolerance = 1e-6;
   int max_iterations = 150;
+  /// The starting variance; 0 = the classic all-pairs value (initial_sigma2). A start that is already close
+  /// (the refinement after a space fit) gives its own residual variance instead.
+  double initial_sigma2 = 0.0;
 };
 
 struct EmOutcome {
