@@ -3,6 +3,7 @@
 #include "partreg/core/refinement.hpp"
 
 #include <Eigen/Dense>
+#include <Eigen/Sparse>
 #include <chrono>
 #include <cmath>
 
@@ -19,6 +20,9 @@ namespace {
 // Landmarks per unit area over beta^2: 0.5 puts kernel centres about 1.4 beta apart on a unit-diagonal
 // object (surface area about 1), close enough for a smooth field, few enough that the K x K solve is cheap.
 constexpr double kLandmarkDensity = 0.5;
+// Kernel values below this are left out of the solve's G (a radius of 3.5 beta): each point then meets about
+// 20 centres, not all K. Only the solve is truncated; the field is evaluated in full (apply_kernel).
+constexpr double kTruncation = 2e-3;
 // The smallest starting variance (normalised length squared): an exact fit would otherwise start at zero.
 constexpr double kMinimumSigma2 = 1e-6;
 
@@ -61,6 +65,24 @@ double residual_sigma2(const Points& observed_fitted, const Points& observed) {
   Eigen::VectorXd squared;
   tree.nearest_all(observed, index, squared);
   return std::max(kMinimumSigma2, squared.mean() / 3.0);
+}
+
+using SparseKernel = Eigen::SparseMatrix<double, Eigen::RowMajor>;
+
+// G(points, centres) without the values below kTruncation.
+SparseKernel truncated_kernel(const Points& points, const Points& centres, double beta) {
+  const KdTree tree(centres);
+  const double radius = beta * std::sqrt(2.0 * std::log(1.0 / kTruncation));
+  std::vector<Eigen::Triplet<double>> entries;
+  std::vector<std::pair<int, double>> near;
+  for (Eigen::Index m = 0; m < points.rows(); ++m) {
+    tree.radius(points.row(m).transpose(), radius, near);
+    for (const auto& [l, d2] : near)
+      entries.emplace_back(static_cast<int>(m), l, std::exp(-d2 / (2.0 * beta * beta)));
+  }
+  SparseKernel kernel(points.rows(), centres.rows());
+  kernel.setFromTriplets(entries.begin(), entries.end());
+  return kernel;
 }
 
 // CPD's variance update over the E-step's points (Myronenko & Song, Fig. 4).
@@ -108,9 +130,7 @@ RefinementField refine_fit(const Points& fitted, const Points& observed,
   const auto count = std::min<Eigen::Index>(
       fitted.rows(), static_cast<Eigen::Index>(std::ceil(kLandmarkDensity / (settings.beta * settings.beta))));
   const Points centres = select_rows(fitted, farthest_point_indices(fitted, static_cast<std::size_t>(count)));
-  const Eigen::MatrixXd G = gaussian_kernel(fitted, centres, settings.beta);  // M x K
-  Eigen::MatrixXd G_seen(static_cast<Eigen::Index>(seen.size()), G.cols());
-  for (std::size_t i = 0; i < seen.size(); ++i) G_seen.row(static_cast<Eigen::Index>(i)) = G.row(seen[i]);
+  const SparseKernel G = truncated_kernel(fitted, centres, settings.beta);  // M x K
   const Eigen::MatrixXd G_centres = gaussian_kernel(centres, centres, settings.beta);
   const Points fitted_seen = select_rows(fitted, seen);
 
@@ -135,10 +155,11 @@ RefinementField refine_fit(const Points& fitted, const Points& observed,
         }
         // (G^T d(mass) G + lambda sigma2 G_LL) W = G^T pull: the normal equations of CPD's objective with
         // the field on K centres (the motion-coherence term is the field's kernel norm W^T G_LL W).
-        Eigen::MatrixXd system = G.transpose() * mass.asDiagonal() * G;
+        const SparseKernel weighted = mass.asDiagonal() * G;
+        Eigen::MatrixXd system = Eigen::MatrixXd(G.transpose() * weighted);
         system += settings.lambda * sigma2 * G_centres;
         weights = system.ldlt().solve(G.transpose() * pull);
-        moved_seen = fitted_seen + G_seen * weights;
+        moved_seen = fitted_seen + select_rows(Points(G * weights), seen);
         return variance(e, observed, moved_seen);
       });
   field.centres = centres;
