@@ -157,9 +157,16 @@ TEST(Refinement, MeshesPointsAndFramesFollowIt) {
   EXPECT_LT((frames[0].rotation.transpose() * frames[0].rotation - Eigen::Matrix3d::Identity()).norm(), 1e-9);
 }
 
+// A mug's surface in normalised size (no model: the refinement alone needs none).
+Points mug_points() {
+  const std::vector<SyntheticInstance> mugs = make_synthetic_category(SyntheticCategory::mug, 1, 31);
+  const Points points = sample_correspondences(SyntheticCategory::mug, mugs[0].shape_parameters, 600, 5).points;
+  return Normalization::fit(points).apply(points);
+}
+
 TEST(Refinement, NothingObservedNearbyLeavesTheSpaceFit) {
   // Stated fallback: an observation farther than the gate from every fitted point gives an empty field.
-  const Points fitted = setup().model.canonical;
+  const Points fitted = mug_points();
   const Points far = fitted.rowwise() + Eigen::RowVector3d(5.0, 0.0, 0.0);
   const RefinementField field = refine_fit(fitted, far, std::nullopt, RefinementSettings{});
   EXPECT_TRUE(field.empty());
@@ -168,7 +175,7 @@ TEST(Refinement, NothingObservedNearbyLeavesTheSpaceFit) {
 }
 
 TEST(Refinement, BadInputIsRefusedClearly) {
-  const Points fitted = setup().model.canonical;
+  const Points fitted = mug_points();
   EXPECT_THROW(refine_fit(fitted, fitted.topRows(5), std::nullopt, {}), InputError);
   Points broken = fitted;
   broken(3, 1) = std::numeric_limits<double>::quiet_NaN();
