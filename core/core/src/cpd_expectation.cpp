@@ -354,7 +354,7 @@ void report_iteration(const EmControl& control, int iteration, double sigma2, do
 EmOutcome run_em(const Points& target, Points& moved, const EmControl& control,
                  const std::function<double(const Expectation&, double sigma2)>& m_step) {
   EmOutcome outcome;
-  double sigma2 = initial_sigma2(moved, target);
+  double sigma2 = control.initial_sigma2 > 0.0 ? control.initial_sigma2 : initial_sigma2(moved, target);
   if (!(sigma2 > 0.0)) {
     outcome.stop_reason = CpdStopReason::degenerate;
     return outcome;

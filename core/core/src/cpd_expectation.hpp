@@ -62,6 +62,9 @@ struct EmControl {
   double tolerance = 1e-6;
   int max_iterations = 150;
   ProgressListener progress;  ///< after every iteration (the settings' own listener)
+  /// The starting variance; 0 = the classic all-pairs value (initial_sigma2). A start that is already close
+  /// (the refinement after a space fit) gives its own residual variance instead.
+  double initial_sigma2 = 0.0;
 };
 
 struct EmOutcome {

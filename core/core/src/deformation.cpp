@@ -48,6 +48,15 @@ Points moved_by(const CategoryModel& model, const SpaceFit& fit, const Points& n
   return (data * linear.transpose()).rowwise() + fit.T_observed_canonical.topRightCorner<3, 1>().transpose();
 }
 
+// The rotation nearest a linear map (polar decomposition), kept proper.
+Eigen::Matrix3d nearest_rotation(const Eigen::Matrix3d& linear) {
+  const Eigen::JacobiSVD<Eigen::Matrix3d> svd(linear, Eigen::ComputeFullU | Eigen::ComputeFullV);
+  Eigen::Matrix3d rotation = svd.matrixU() * svd.matrixV().transpose();
+  if (rotation.determinant() < 0.0)
+    rotation = svd.matrixU() * Eigen::Vector3d(1, 1, -1).asDiagonal() * svd.matrixV().transpose();
+  return rotation;
+}
+
 }  // namespace
 
 Eigen::MatrixXd seam_weights(const std::vector<const ShapeSpace*>& spaces, const Points& normalised,
@@ -88,7 +97,8 @@ Points deform_points(const CategoryModel& model, const RegistrationResult& resul
   for (std::size_t s = 0; s < spaces.size(); ++s)
     moved += weights.col(static_cast<Eigen::Index>(s)).asDiagonal() *
              moved_by(model, result.fits[spaces[s]], normalised);
-  return moved;
+  // The refinement's field lives where the space put the points (observed frame).
+  return moved + result.refinement.displacement_at(moved);
 }
 
 Mesh deform_mesh(const CategoryModel& model, const RegistrationResult& result, const SeamBlend& blend) {
@@ -143,14 +153,13 @@ std::vector<Frame> transfer_frames(const CategoryModel& model, const Registratio
     const Eigen::Matrix3d jacobian =
         Eigen::Matrix3d::Identity() + kernel_field_jacobian(normalised.row(0).transpose(), space.canonical,
                                                             space.weights(fit.latent), space.beta);
-    const Eigen::JacobiSVD<Eigen::Matrix3d> svd(jacobian, Eigen::ComputeFullU | Eigen::ComputeFullV);
-    Eigen::Matrix3d local = svd.matrixU() * svd.matrixV().transpose();
-    if (local.determinant() < 0.0)
-      local = svd.matrixU() * Eigen::Vector3d(1, 1, -1).asDiagonal() * svd.matrixV().transpose();
     const Eigen::Matrix3d pose_rotation = fit.T_observed_canonical.topLeftCorner<3, 3>() / fit.scale;
+    // The refinement turns the frame by its own Jacobian where the space put it, after the pose.
+    const Eigen::Vector3d by_space = moved_by(model, fit, normalised).row(0).transpose();
+    const Eigen::Matrix3d refinement = Eigen::Matrix3d::Identity() + result.refinement.jacobian_at(by_space);
     Frame out = frame;
     out.position = deform_points(model, result, position).row(0).transpose();
-    out.rotation = pose_rotation * local * frame.rotation;
+    out.rotation = nearest_rotation(refinement) * pose_rotation * nearest_rotation(jacobian) * frame.rotation;
     moved.push_back(out);
   }
   return moved;

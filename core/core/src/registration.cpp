@@ -11,6 +11,7 @@
 #include "partreg/core/registration_options.hpp"
 #include "partreg/core/sampling.hpp"
 #include "coupled_solver.hpp"
+#include "point_normals.hpp"
 #include "pose_search.hpp"
 #include "space_solver.hpp"
 
@@ -44,27 +45,8 @@ detail::Observation prepare_observation(const CategoryModel& model, const Points
   return observation;
 }
 
-// Outward normals of the canonical points: PCA of each point's neighbourhood, turned away from the centroid.
-Points canonical_normals(const Points& points) {
-  const KdTree tree(points);
-  const Eigen::RowVector3d centre = points.colwise().mean();
-  const double radius = 0.05;  // normalised: a few canonical spacings
-  Points normals(points.rows(), 3);
-  std::vector<std::pair<int, double>> near;
-  for (Eigen::Index m = 0; m < points.rows(); ++m) {
-    tree.radius(points.row(m).transpose(), radius, near);
-    Eigen::Matrix3d covariance = Eigen::Matrix3d::Zero();
-    Eigen::Vector3d mean = Eigen::Vector3d::Zero();
-    for (const auto& [j, d2] : near) mean += points.row(j).transpose();
-    mean /= static_cast<double>(std::max<std::size_t>(near.size(), 1));
-    for (const auto& [j, d2] : near)
-      covariance += (points.row(j).transpose() - mean) * (points.row(j) - mean.transpose());
-    Eigen::Vector3d normal = Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d>(covariance).eigenvectors().col(0);
-    if (normal.dot((points.row(m) - centre).transpose()) < 0.0) normal = -normal;
-    normals.row(m) = normal.transpose();
-  }
-  return normals;
-}
+// Outward normals of the canonical points; 0.05 (normalised) is a few canonical spacings.
+Points canonical_normals(const Points& points) { return detail::outward_normals(points, 0.05); }
 
 Eigen::Matrix4d to_data_frame(const Pose& pose, const CategoryModel& model, const Eigen::Vector3d& centroid) {
   const double S = model.normalization.scale;
@@ -228,6 +210,12 @@ RegistrationResult register_observation(const CategoryModel& model, const Points
       for (std::size_t i = 0; i < space.point_indices.size(); ++i)
         deformed_normalised.row(space.point_indices[i]) = posed.row(static_cast<Eigen::Index>(i));
     }
+  }
+  if (settings.refinement.enabled) {
+    const RefinementField field =
+        refine_fit(deformed_normalised, observation.points, observation.viewpoint, settings.refinement);
+    deformed_normalised += field.displacement_at(deformed_normalised);
+    result.refinement = field.transformed(model.normalization.scale, centroid);
   }
   result.deformed = (deformed_normalised * model.normalization.scale).rowwise() + centroid.transpose();
   result.part = model.canonical_part;

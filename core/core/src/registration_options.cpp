@@ -198,6 +198,27 @@ std::vector<RegistrationOption> make_options() {
       real(
           "voxel-size", "voxel pre-pass before the farthest-point subset (normalised length; 0 = none)", 0.0,
           1.0, [](auto& s) -> auto& { return s.sampling.voxel_size; }),
+      flag(
+          "refine", "a non-rigid fit beyond the shape space where the observation was seen",
+          [](auto& s) -> auto& { return s.refinement.enabled; }),
+      real(
+          "refine-beta", "width of the refinement's kernel (normalised length): the finest detail", 0.005, 1.0,
+          [](auto& s) -> auto& { return s.refinement.beta; }),
+      real(
+          "refine-lambda", "smoothness of the refinement's field against the data", 1e-6, 1e6,
+          [](auto& s) -> auto& { return s.refinement.lambda; }),
+      real(
+          "refine-anchor", "pull of unobserved points back to the space's shape (1: as firm as data)", 0.0, 1e6,
+          [](auto& s) -> auto& { return s.refinement.anchor; }),
+      real(
+          "refine-gate", "a point farther than this from the observation is unobserved (normalised length)",
+          1e-4, 10.0, [](auto& s) -> auto& { return s.refinement.gate; }),
+      real(
+          "refine-outliers", "share of the observation the refinement explains as uniform noise", 0.0, 0.99,
+          [](auto& s) -> auto& { return s.refinement.outlier_weight; }),
+      whole(
+          "refine-iterations", "refinement EM iterations at most", 1, 1000,
+          [](auto& s) -> auto& { return s.refinement.iterations; }),
   };
 }
 

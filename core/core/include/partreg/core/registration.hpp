@@ -15,6 +15,7 @@
 
 #include "partreg/core/category_model.hpp"
 #include "partreg/core/progress.hpp"
+#include "partreg/core/refinement.hpp"
 #include "partreg/core/registration_settings.hpp"
 
 namespace partreg::core {
@@ -72,6 +73,9 @@ struct RegistrationResult {
   Points deformed;                   ///< deformed canonical points in the observed frame (data units)
   Eigen::VectorXi part;              ///< part per deformed point
   std::vector<HistoryStep> history;  ///< every outer step of every space, in order
+  /// The fit beyond the space (observed frame, data units; empty unless RefinementSettings::enabled):
+  /// `deformed` holds the space fit moved by it, and deformation.hpp moves meshes, points and frames alike.
+  RefinementField refinement;
   FitStatistics fit;
   double seconds = 0.0;
 };

@@ -95,6 +95,22 @@ struct SamplingSettings {
   double voxel_size = 0.004;
 };
 
+/// A fit beyond the shape space (refinement.hpp): after the space fit, a non-rigid CPD whose field lives on
+/// the fitted canonical points, started at the fit and pulled back to it where nothing was observed. A
+/// canonical point is observed when it faces the viewpoint (if one is known) and an observed point lies
+/// within `gate` of it. Measurements behind the defaults: docs/registration.md.
+struct RefinementSettings {
+  bool enabled = false;  ///< off: the result is the space fit
+  double beta = 0.05;    ///< width of the refinement's Gaussian kernel (normalised length): the finest detail
+  double lambda = 1.0;   ///< motion coherence: weight of the field's smoothness against the data (unitless)
+  /// Pull of an unobserved canonical point back to the space's prediction, in units of an observed point's
+  /// mean posterior mass (so 1 holds it as firmly as data holds an observed point).
+  double anchor = 1.0;
+  double gate = 0.05;           ///< farther than this from every observed point is unobserved (normalised length)
+  double outlier_weight = 0.1;  ///< CPD's w in [0, 1): share of the observation explained by uniform noise
+  int iterations = 20;          ///< EM iterations at most
+};
+
 /// One registration request.
 struct RegistrationSettings {
   Variant variant = Variant::holistic;
@@ -102,6 +118,7 @@ struct RegistrationSettings {
   InitialisationSettings initialisation;
   ConvergenceSettings convergence;
   SamplingSettings sampling;
+  RefinementSettings refinement;
   /// Camera position (observed frame, data units): only canonical points facing it are matched. Unknown when
   /// empty.
   std::optional<Eigen::Vector3d> viewpoint;

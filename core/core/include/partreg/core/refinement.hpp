@@ -1,0 +1,47 @@
+#pragma once
+/// \file
+/// A fit beyond the shape space (issue 15): the space fit is as good as the training set's shapes allow;
+/// the refinement lets the observed regions reach what the sensor saw. It is non-rigid CPD (Myronenko &
+/// Song 2010) with three changes: it starts at the space fit with the fit's own residual variance, only the
+/// canonical points that were observed take part in the E-step, and the others are pulled back to the
+/// space's prediction (an anchor), so unseen regions keep the space's plausible shape. The field is a
+/// Gaussian kernel field on landmarks of the fitted points, v(p) = sum_l g(p, c_l) w_l, so a mesh vertex,
+/// any point or a frame moved by the space follows by evaluating v where the space put it (deformation.hpp).
+
+#include <Eigen/Core>
+#include <optional>
+
+#include "partreg/core/registration_settings.hpp"
+#include "partreg/core/types.hpp"
+
+namespace partreg::core {
+
+/// The refinement's displacement field, in the frame of the points it was fitted to (after the pose).
+struct RefinementField {
+  Points centres;     ///< kernel centres c_l: landmarks of the space fit's points (frame units); none = no field
+  Points weights;     ///< w_l, one row per centre (frame units)
+  double beta = 0.0;  ///< kernel width (frame units)
+  int points = 0;     ///< fitted points refined
+  int observed = 0;   ///< of those, the ones treated as observed (pulled to the data)
+  int iterations = 0;  ///< EM iterations run
+  double seconds = 0.0;
+
+  bool empty() const { return centres.rows() == 0; }
+  /// v(p) at every row of `positions` (frame units); zeros when empty.
+  Points displacement_at(const Points& positions) const;
+  /// dv/dp at `position` (3 x 3): frames turn with I + this.
+  Eigen::Matrix3d jacobian_at(const Eigen::Vector3d& position) const;
+  /// The same field in the frame p' = scale p + offset (scale > 0).
+  RefinementField transformed(double scale, const Eigen::Vector3d& offset) const;
+};
+
+/// Refines `fitted` (the space fit's points, one per canonical point) towards `observed`, both in one frame
+/// whose lengths are normalised (the model's diagonal is 1: settings' lengths are in it). `viewpoint` is the
+/// camera position in that frame, if known; without it, the gate alone decides what was observed (a stated
+/// fallback: a point near the observation counts as seen). Fewer than 10 observed points leave nothing to
+/// refine: the field comes back empty. InputError for fewer than 10 or non-finite points in either set;
+/// UsageError for settings out of range.
+RefinementField refine_fit(const Points& fitted, const Points& observed,
+                           const std::optional<Eigen::Vector3d>& viewpoint, const RefinementSettings& settings);
+
+}  // namespace partreg::core

@@ -1,0 +1,13 @@
+#pragma once
+// Normals of a point set without a surface (internal to partreg_core): the registration's visibility test
+// and the refinement's both use them.
+
+#include "partreg/core/types.hpp"
+
+namespace partreg::core::detail {
+
+/// Unit normal per point: the smallest principal direction of its neighbours within `radius` (units of the
+/// points), turned away from the set's centroid (right for convex-ish objects; a mug's inner wall is not).
+Points outward_normals(const Points& points, double radius);
+
+}  // namespace partreg::core::detail

@@ -1,0 +1,173 @@
+// The refinement after the space fit (refinement.hpp): non-rigid CPD on landmark kernel centres, started at
+// the fit, with only the observed points in the E-step and an anchor on the rest.
+#include "partreg/core/refinement.hpp"
+
+#include <Eigen/Dense>
+#include <Eigen/Sparse>
+#include <chrono>
+#include <cmath>
+
+#include "cpd_expectation.hpp"
+#include "partreg/core/errors.hpp"
+#include "partreg/core/gaussian_kernel.hpp"
+#include "partreg/core/kdtree.hpp"
+#include "partreg/core/sampling.hpp"
+#include "point_normals.hpp"
+
+namespace partreg::core {
+namespace {
+
+// Landmarks per unit area over beta^2: 0.5 puts kernel centres about 1.4 beta apart on a unit-diagonal
+// object (surface area about 1), close enough for a smooth field, few enough that the K x K solve is cheap.
+constexpr double kLandmarkDensity = 0.5;
+// Kernel values below this are left out of the solve's G (a radius of 3.5 beta): each point then meets about
+// 20 centres, not all K. Only the solve is truncated; the field is evaluated in full (apply_kernel).
+constexpr double kTruncation = 2e-3;
+// The smallest starting variance (normalised length squared): an exact fit would otherwise start at zero.
+constexpr double kMinimumSigma2 = 1e-6;
+
+void check(const Points& points, const char* name) {
+  if (points.rows() < 10)
+    throw InputError(std::string("the refinement needs at least 10 ") + name + " points, got " +
+                     std::to_string(points.rows()));
+  if (!points.allFinite()) throw InputError(std::string("the refinement's ") + name + " points are not finite");
+}
+
+void check(const RefinementSettings& s) {
+  if (!(s.beta > 0.0)) throw UsageError("the refinement's beta must be positive");
+  if (!(s.lambda > 0.0)) throw UsageError("the refinement's lambda must be positive");
+  if (!(s.anchor >= 0.0)) throw UsageError("the refinement's anchor must be zero or positive");
+  if (!(s.gate > 0.0)) throw UsageError("the refinement's gate must be positive");
+  if (!(s.outlier_weight >= 0.0 && s.outlier_weight < 1.0))
+    throw UsageError("the refinement's outlier weight must be in [0, 1)");
+  if (s.iterations < 1) throw UsageError("the refinement needs at least one iteration");
+}
+
+// Which fitted points were observed: facing the viewpoint (when known; the normals are the fitted points'
+// own) and within the gate of an observed point.
+std::vector<int> observed_rows(const Points& fitted, const KdTree& observed_tree,
+                               const std::optional<Eigen::Vector3d>& viewpoint, double gate) {
+  const Points normals = viewpoint ? detail::outward_normals(fitted, 0.05) : Points();
+  std::vector<int> rows;
+  for (Eigen::Index m = 0; m < fitted.rows(); ++m) {
+    const Eigen::Vector3d p = fitted.row(m).transpose();
+    if (viewpoint && normals.row(m).dot((*viewpoint - p).transpose()) <= 0.0) continue;
+    if (observed_tree.nearest(p).second <= gate * gate) rows.push_back(static_cast<int>(m));
+  }
+  return rows;
+}
+
+// The residual variance of the fit: the mean squared distance from each observed point to the nearest
+// observed fitted point, over the three dimensions (the per-axis variance CPD's sigma2 is).
+double residual_sigma2(const Points& observed_fitted, const Points& observed) {
+  const KdTree tree(observed_fitted);
+  std::vector<int> index;
+  Eigen::VectorXd squared;
+  tree.nearest_all(observed, index, squared);
+  return std::max(kMinimumSigma2, squared.mean() / 3.0);
+}
+
+using SparseKernel = Eigen::SparseMatrix<double, Eigen::RowMajor>;
+
+// G(points, centres) without the values below kTruncation.
+SparseKernel truncated_kernel(const Points& points, const Points& centres, double beta) {
+  const KdTree tree(centres);
+  const double radius = beta * std::sqrt(2.0 * std::log(1.0 / kTruncation));
+  std::vector<Eigen::Triplet<double>> entries;
+  std::vector<std::pair<int, double>> near;
+  for (Eigen::Index m = 0; m < points.rows(); ++m) {
+    tree.radius(points.row(m).transpose(), radius, near);
+    for (const auto& [l, d2] : near)
+      entries.emplace_back(static_cast<int>(m), l, std::exp(-d2 / (2.0 * beta * beta)));
+  }
+  SparseKernel kernel(points.rows(), centres.rows());
+  kernel.setFromTriplets(entries.begin(), entries.end());
+  return kernel;
+}
+
+// CPD's variance update over the E-step's points (Myronenko & Song, Fig. 4).
+double variance(const detail::Expectation& e, const Points& target, const Points& moved) {
+  const double target_term = (target.array().square().colwise() * e.Pt1.array()).sum();
+  const double cross = (e.PX.array() * moved.array()).sum();
+  const double moved_term = (moved.array().square().colwise() * e.P1.array()).sum();
+  return std::abs(target_term - 2.0 * cross + moved_term) / (3.0 * e.Np);
+}
+
+}  // namespace
+
+Points RefinementField::displacement_at(const Points& positions) const {
+  if (empty()) return Points::Zero(positions.rows(), 3);
+  return apply_kernel(positions, centres, weights, beta);
+}
+
+Eigen::Matrix3d RefinementField::jacobian_at(const Eigen::Vector3d& position) const {
+  if (empty()) return Eigen::Matrix3d::Zero();
+  return kernel_field_jacobian(position, centres, weights, beta);
+}
+
+RefinementField RefinementField::transformed(double scale, const Eigen::Vector3d& offset) const {
+  RefinementField field = *this;
+  if (empty()) return field;
+  field.centres = (centres * scale).rowwise() + offset.transpose();
+  field.weights = weights * scale;  // the kernel values do not change: distances and beta scale alike
+  field.beta = beta * scale;
+  return field;
+}
+
+RefinementField refine_fit(const Points& fitted, const Points& observed,
+                           const std::optional<Eigen::Vector3d>& viewpoint, const RefinementSettings& settings) {
+  const auto start = std::chrono::steady_clock::now();
+  check(settings);
+  check(fitted, "fitted");
+  check(observed, "observed");
+  const KdTree observed_tree(observed);
+  const std::vector<int> seen = observed_rows(fitted, observed_tree, viewpoint, settings.gate);
+  RefinementField field;
+  field.points = static_cast<int>(fitted.rows());
+  field.observed = static_cast<int>(seen.size());
+  if (seen.size() < 10) return field;  // nothing seen to refine towards: the space fit stands
+
+  const auto count = std::min<Eigen::Index>(
+      fitted.rows(), static_cast<Eigen::Index>(std::ceil(kLandmarkDensity / (settings.beta * settings.beta))));
+  const Points centres = select_rows(fitted, farthest_point_indices(fitted, static_cast<std::size_t>(count)));
+  const SparseKernel G = truncated_kernel(fitted, centres, settings.beta);  // M x K
+  const Eigen::MatrixXd G_centres = gaussian_kernel(centres, centres, settings.beta);
+  const Points fitted_seen = select_rows(fitted, seen);
+
+  Points weights = Points::Zero(centres.rows(), 3);
+  Points moved_seen = fitted_seen;
+  detail::EmControl control;
+  control.e_step.outlier_weight = settings.outlier_weight;
+  control.tolerance = 1e-5;
+  control.max_iterations = settings.iterations;
+  control.initial_sigma2 = residual_sigma2(fitted_seen, observed);
+  const detail::EmOutcome outcome =
+      detail::run_em(observed, moved_seen, control, [&](const detail::Expectation& e, double sigma2) {
+        // Unobserved points pull towards zero displacement (the space's prediction) with the anchor's
+        // weight, in units of an observed point's mean posterior mass.
+        const double anchor = settings.anchor * e.Np / static_cast<double>(seen.size());
+        Eigen::VectorXd mass = Eigen::VectorXd::Constant(fitted.rows(), anchor);
+        Points pull = Points::Zero(fitted.rows(), 3);  // P X - d(P1) Y on observed rows, 0 elsewhere
+        for (std::size_t i = 0; i < seen.size(); ++i) {
+          const auto m = static_cast<Eigen::Index>(seen[i]), r = static_cast<Eigen::Index>(i);
+          mass[m] = e.P1[r];
+          pull.row(m) = e.PX.row(r) - e.P1[r] * fitted_seen.row(r);
+        }
+        // (G^T d(mass) G + lambda sigma2 G_LL) W = G^T pull: the normal equations of CPD's objective with
+        // the field on K centres (the motion-coherence term is the field's kernel norm W^T G_LL W).
+        const SparseKernel weighted = mass.asDiagonal() * G;
+        Eigen::MatrixXd system = Eigen::MatrixXd(G.transpose() * weighted);
+        system += settings.lambda * sigma2 * G_centres;
+        weights = system.ldlt().solve(G.transpose() * pull);
+        moved_seen = fitted_seen + select_rows(Points(G * weights), seen);
+        return variance(e, observed, moved_seen);
+      });
+  field.centres = centres;
+  field.weights = weights;
+  field.beta = settings.beta;
+  field.iterations = outcome.iterations;
+  field.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return field;
+}
+
+}  // namespace partreg::core
