@@ -50,7 +50,8 @@ install(FILES ${PROJECT_BINARY_DIR}/partregConfig.cmake ${PROJECT_BINARY_DIR}/pa
 
 # pkg-config: one partreg.pc for the whole library (link order: render, eval, io, core).
 set(PARTREG_PC_LIBS "")
-set(PARTREG_PC_PRIVATE "-lceres")
+# Ceres's inline code (autodiff, its CHECK macros) calls glog directly.
+set(PARTREG_PC_PRIVATE "-lceres -lglog")
 set(PARTREG_PC_REQUIRES_PRIVATE "")
 if(TARGET partreg_render)
   string(APPEND PARTREG_PC_LIBS " -lpartreg_render -lpartreg_glad")
