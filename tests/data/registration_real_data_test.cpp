@@ -35,6 +35,7 @@ void expect_better_than_rigid_mean(const LeaveOneOut& setup, const std::vector<c
   const double scale2 = setup.model.normalization.scale * setup.model.normalization.scale;
   core::RegistrationSettings rigid;
   rigid.objective.prior_weight = 1e6;
+  rigid.refinement.enabled = false;  // rigid: no fit beyond the (pinned) shape space either
   const double rigid_error =
       core::closest_point_error(core::register_observation(setup.model, setup.observed, rigid).deformed,
                                 setup.observed) /

@@ -24,9 +24,12 @@ void add_registration_flags(CLI::App* command, core::RegistrationSettings& setti
   for (const core::RegistrationOption& option : core::registration_options()) {
     if (skip.count(option.name)) continue;
     const std::string flag = "--" + option.name;
-    if (option.is_flag) {
+    if (option.is_flag) {  // a flag turns on what is off by default, and --no-NAME off what is on
+      const bool on = option.get(defaults) == "true";
       command->add_flag_callback(
-          flag, [&settings, &option] { set_naming_flag(option, settings, "true"); }, option.help);
+          on ? "--no-" + option.name : flag,
+          [&settings, &option, on] { set_naming_flag(option, settings, on ? "false" : "true"); },
+          on ? "do not: " + option.help + " (on by default)" : option.help);
       continue;
     }
     command

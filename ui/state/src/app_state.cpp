@@ -85,6 +85,9 @@ core::Points registration_points(const AppState& state, Eigen::VectorXi* part) {
   if (!registration.result || !state.shapes.loaded()) return {};
   const core::CategoryModel& model = *state.shapes.model;
   const auto& history = registration.result->history;
+  if (part) *part = model.canonical_part;
+  // The last step shows the result itself: the refinement beyond the shape space follows the last step.
+  if (registration.step >= static_cast<int>(history.size()) - 1) return registration.result->deformed;
   core::Points points = core::Points::Constant(model.canonical.rows(), 3, std::nan(""));
   // Replays the history up to the current step: each step moves the rows of its space.
   for (int i = 0; i <= registration.step && i < static_cast<int>(history.size()); ++i) {
@@ -102,7 +105,6 @@ core::Points registration_points(const AppState& state, Eigen::VectorXi* part) {
     // Before the first step: the canonical where the registration starts (the data frame).
     points = model.normalization.undo(model.canonical);
   }
-  if (part) *part = model.canonical_part;
   return points;
 }
 
