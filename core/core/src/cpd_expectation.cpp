@@ -401,4 +401,11 @@ double seconds_since(std::int64_t start_nanoseconds) {
   return static_cast<double>(now_nanoseconds() - start_nanoseconds) * 1e-9;
 }
 
+double nonrigid_variance(const Expectation& e, const Points& target, const Points& moved) {
+  const double target_term = (target.array().square().colwise() * e.Pt1.array()).sum();
+  const double cross = (e.PX.array() * moved.array()).sum();
+  const double moved_term = (moved.array().square().colwise() * e.P1.array()).sum();
+  return std::abs(target_term - 2.0 * cross + moved_term) / (3.0 * e.Np);
+}
+
 }  // namespace partreg::core::detail

@@ -48,6 +48,10 @@ void check_cpd_common(double outlier_weight, double tolerance, int max_iteration
 /// Validates the fast E-step's truncation (0, 1) and cell size [0, 1] sigma.
 void check_fast_e_step(double truncation, double cell_size);
 
+/// CPD's variance update for a moved source (non-rigid and affine: Myronenko & Song, Fig. 4) over the
+/// E-step's points: sum P |t - y|^2 / (3 Np), from the E-step's sums.
+double nonrigid_variance(const Expectation& e, const Points& target, const Points& moved);
+
 }  // namespace partreg::core::detail
 
 #include <functional>

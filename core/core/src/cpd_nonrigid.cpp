@@ -38,12 +38,6 @@ LowRankKernel low_rank_kernel(const Points& source, double beta, int kernel_rank
   return kernel;
 }
 
-double variance(const detail::Expectation& e, const Points& target, const Points& moved) {
-  const double target_term = (target.array().square().colwise() * e.Pt1.array()).sum();
-  const double cross = (e.PX.array() * moved.array()).sum();
-  const double moved_term = (moved.array().square().colwise() * e.P1.array()).sum();
-  return std::abs(target_term - 2.0 * cross + moved_term) / (3.0 * e.Np);
-}
 
 void check_settings(const NonrigidCpdSettings& s) {
   if (!(s.beta > 0.0)) throw UsageError("CPD beta must be positive, got " + std::to_string(s.beta));
@@ -126,7 +120,7 @@ NonrigidCpdResult register_nonrigid(const Points& source_in, const Points& targe
           weights = system.partialPivLu().solve(rhs);
           moved = source + kernel * weights;
         }
-        return variance(e, target, moved);
+        return detail::nonrigid_variance(e, target, moved);
       });
   // The fast solver's field is exactly G(Y, L) W_L: W is zero outside the landmark rows. The moved points
   // are recomputed from W so that apply(source) reproduces them whatever solver found it.

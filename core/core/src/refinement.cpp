@@ -85,13 +85,6 @@ SparseKernel truncated_kernel(const Points& points, const Points& centres, doubl
   return kernel;
 }
 
-// CPD's variance update over the E-step's points (Myronenko & Song, Fig. 4).
-double variance(const detail::Expectation& e, const Points& target, const Points& moved) {
-  const double target_term = (target.array().square().colwise() * e.Pt1.array()).sum();
-  const double cross = (e.PX.array() * moved.array()).sum();
-  const double moved_term = (moved.array().square().colwise() * e.P1.array()).sum();
-  return std::abs(target_term - 2.0 * cross + moved_term) / (3.0 * e.Np);
-}
 
 }  // namespace
 
@@ -160,7 +153,7 @@ RefinementField refine_fit(const Points& fitted, const Points& observed,
         system += settings.lambda * sigma2 * G_centres;
         weights = system.ldlt().solve(G.transpose() * pull);
         moved_seen = fitted_seen + select_rows(Points(G * weights), seen);
-        return variance(e, observed, moved_seen);
+        return detail::nonrigid_variance(e, observed, moved_seen);
       });
   field.centres = centres;
   field.weights = weights;
