@@ -307,20 +307,8 @@ double solve_step(const std::vector<Part>& parts, const std::vector<Seam>& seams
                              unknowns.offset_translation[p].data());
   }
   add_seams(problem, parts, seams, unknowns, settings.objective.seam_weight);
-  problem.SetManifold(rotation, new ceres::EigenQuaternionManifold);
-  if (!settings.objective.estimate_scale)
-    problem.SetParameterBlockConstant(scale);
-  else
-    problem.SetParameterLowerBound(scale, 0, 0.2);
-
-  ceres::Solver::Options options;
-  options.linear_solver_type = ceres::DENSE_NORMAL_CHOLESKY;  // 7 + P (6 + q) unknowns
-  options.max_num_iterations = settings.convergence.inner_iterations;
-  options.num_threads = 1;
-  options.logging_type = ceres::SILENT;
-  ceres::Solver::Summary summary;
-  ceres::Solve(options, &problem, &summary);
-  return summary.final_cost;
+  constrain_pose(problem, rotation, scale, settings);
+  return solve_inner(problem, settings);  // 7 + P (6 + q) unknowns
 }
 
 Unknowns start_from(const CategoryModel& model, const SpaceSolution& holistic) {

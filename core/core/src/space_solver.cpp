@@ -90,6 +90,26 @@ Points Pose::apply(const Points& points) const {
   return ((scale * points * R.transpose()).rowwise() + translation.transpose());
 }
 
+void constrain_pose(ceres::Problem& problem, double* rotation, double* scale,
+                    const RegistrationSettings& settings) {
+  problem.SetManifold(rotation, new ceres::EigenQuaternionManifold);
+  if (!settings.objective.estimate_scale)
+    problem.SetParameterBlockConstant(scale);
+  else
+    problem.SetParameterLowerBound(scale, 0, 0.2);
+}
+
+double solve_inner(ceres::Problem& problem, const RegistrationSettings& settings) {
+  ceres::Solver::Options options;
+  options.linear_solver_type = ceres::DENSE_NORMAL_CHOLESKY;
+  options.max_num_iterations = settings.convergence.inner_iterations;
+  options.num_threads = 1;
+  options.logging_type = ceres::SILENT;
+  ceres::Solver::Summary summary;
+  ceres::Solve(options, &problem, &summary);
+  return summary.final_cost;
+}
+
 SpaceSolution solve_space(const ShapeSpace& space, const Points& normals, const Observation& observation,
                           const Eigen::VectorXd& initial_latent, const Pose& initial_pose,
                           const RegistrationSettings& settings) {
@@ -118,37 +138,26 @@ SpaceSolution solve_space(const ShapeSpace& space, const Points& normals, const 
     problem.AddResidualBlock(
         new MomentCost(space, weighted_pairs(pairs, settings), settings.objective.prior_weight), nullptr,
         rotation, translation, scale, latent);
-    problem.SetManifold(rotation, new ceres::EigenQuaternionManifold);
-    if (!settings.objective.estimate_scale)
-      problem.SetParameterBlockConstant(scale);
-    else
-      problem.SetParameterLowerBound(scale, 0, 0.2);
-
-    ceres::Solver::Options options;
-    options.linear_solver_type = ceres::DENSE_NORMAL_CHOLESKY;  // 13 unknowns, 9 (q + 1) + 4 + q residuals
-    options.max_num_iterations = settings.convergence.inner_iterations;
-    options.num_threads = 1;  // parts run in parallel above this level
-    options.logging_type = ceres::SILENT;
-    ceres::Solver::Summary summary;
-    ceres::Solve(options, &problem, &summary);
+    constrain_pose(problem, rotation, scale, settings);
+    const double cost = solve_inner(problem, settings);
 
     solution.iterations = outer + 1;
-    solution.cost = summary.final_cost;
+    solution.cost = cost;
     solution.steps.emplace_back(solution.latent, solution.pose);
-    solution.step_costs.push_back(summary.final_cost);
+    solution.step_costs.push_back(cost);
     solution.step_seconds.push_back(
         std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
     // Settled when neither the cost nor the parameters move any more (correspondences make the cost jitter).
     const double moved = (solution.latent - before_latent).norm() +
                          (solution.pose.translation - before_translation).norm() +
                          solution.pose.rotation.angularDistance(before_rotation);
-    if (std::abs(previous - summary.final_cost) <=
-            settings.convergence.tolerance * std::max(summary.final_cost, 1e-12) ||
+    if (std::abs(previous - cost) <=
+            settings.convergence.tolerance * std::max(cost, 1e-12) ||
         moved < settings.convergence.tolerance) {
       solution.converged = true;
       break;
     }
-    previous = summary.final_cost;
+    previous = cost;
   }
   solution.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return solution;

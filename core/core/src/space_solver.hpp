@@ -6,6 +6,10 @@
 #include <optional>
 #include <vector>
 
+namespace ceres {
+class Problem;
+}
+
 #include "moment_cost.hpp"
 #include "partreg/core/kdtree.hpp"
 #include "partreg/core/registration_settings.hpp"
@@ -64,6 +68,15 @@ std::vector<WeightedPair> weighted_pairs(const Correspondences& pairs, const Reg
 /// Which rows of `posed` (a space's posed canonical points) face the viewpoint; all of them without one.
 std::vector<bool> visible_rows(const Points& posed, const Points& normals, const Pose& pose,
                                const std::optional<Eigen::Vector3d>& viewpoint);
+
+/// The pose's constraints every solver applies: the rotation on the quaternion manifold, the scale fixed or
+/// kept above 0.2.
+void constrain_pose(ceres::Problem& problem, double* rotation, double* scale,
+                    const RegistrationSettings& settings);
+
+/// Runs Ceres on `problem` for the inner iterations the settings allow (dense normal Cholesky: a few dozen
+/// unknowns; one thread, since parts and hypotheses run in parallel above); returns the final cost.
+double solve_inner(ceres::Problem& problem, const RegistrationSettings& settings);
 
 /// Fits `space` from the initial latent and pose. `normals` are outward normals of the space's canonical
 /// points (used only with a viewpoint).
