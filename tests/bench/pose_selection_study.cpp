@@ -4,7 +4,8 @@
 // the truth); each selection score then runs the search and we count how often its result is within 10% of
 // that best. Not a test: it prints the table in docs/registration.md. Run (a few minutes):
 //   ./build/tests/bench/pose_selection_study [folder ...] [NAME=VALUE ...]   (default: mugs bowls kettles)
-// NAME=VALUE sets a registration option of the search (e.g. finalists=4); score=S studies that score only.
+// NAME=VALUE sets a registration option of the search (e.g. finalists=4) and of the single starts the
+// truth-best is taken from (whose restarts and tilts are always 1 and none); score=S studies that score only.
 #include <cstdio>
 #include <map>
 
@@ -88,6 +89,10 @@ int main(int argc, char** argv) {
           const Eigen::Matrix3d R =
               Eigen::AngleAxisd(-2.0 * M_PI * k / yaws, Eigen::Vector3d::UnitY()).toRotationMatrix();
           core::RegistrationSettings one;
+          for (const auto& [name, value] : options) core::set_registration_option(one, name, value);
+          // One start, whatever the search's defaults: yaw k is the observation's turn, no tilt.
+          core::set_registration_option(one, "restarts", "1");
+          core::set_registration_option(one, "max-tilt", "0");
           if (seen.viewpoint) one.viewpoint = R * *seen.viewpoint;
           Observation moved{turned(seen.points, R), one.viewpoint, turned(seen.truth, R)};
           const double e = true_error(core::register_observation(model, moved.points, one), moved, diagonal);

@@ -38,7 +38,7 @@ TEST(RegistrationOptions, EveryOptionRoundTripsItsDefaultAndAChangedValue) {
     EXPECT_EQ(option.get(settings), option.get(defaults)) << option.name;
   }
   RegistrationSettings settings;
-  set_registration_option(settings, "direction", "symmetric");
+  set_registration_option(settings, "direction", "canonical");
   set_registration_option(settings, "loss-scale", "0.035");
   set_registration_option(settings, "restarts", "6");
   set_registration_option(settings, "scale", "true");
@@ -46,7 +46,7 @@ TEST(RegistrationOptions, EveryOptionRoundTripsItsDefaultAndAChangedValue) {
   set_registration_option(settings, "viewpoint", "1,2,3");
   set_registration_option(settings, "iterations", "9");
   set_registration_option(settings, "observed-points", "500");
-  EXPECT_EQ(settings.objective.direction, Direction::symmetric);
+  EXPECT_EQ(settings.objective.direction, Direction::canonical_to_observed);
   EXPECT_DOUBLE_EQ(settings.objective.loss_scale, 0.035);
   EXPECT_EQ(settings.initialisation.restarts, 6);
   EXPECT_TRUE(settings.objective.estimate_scale);
@@ -73,6 +73,7 @@ TEST(RegistrationOptions, BadValuesNameTheValueNotAFlag) {
   const std::vector<std::pair<std::string, std::string>> bad = {{"restarts", "0"},
                                                                 {"restarts", "2.5"},
                                                                 {"restarts", "-3"},
+                                                                {"screening-points", "-1"},
                                                                 {"loss-scale", "nan"},
                                                                 {"up", "0,0,0"},
                                                                 {"viewpoint", "nan,0,0"},

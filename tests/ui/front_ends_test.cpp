@@ -18,7 +18,7 @@ namespace {
 
 // Settings far from the defaults, so that a front end dropping one would be seen.
 const std::vector<std::pair<std::string, std::string>> kSettings = {
-    {"direction", "symmetric"}, {"loss", "cauchy"},     {"loss-scale", "0.03"},
+    {"direction", "canonical"}, {"loss", "cauchy"},     {"loss-scale", "0.03"},
     {"prior-weight", "0.001"},  {"restarts", "2"},      {"iterations", "7"},
     {"inner-iterations", "3"},  {"tolerance", "1e-06"}, {"observed-points", "1500"}};
 

@@ -75,7 +75,7 @@ TEST(RegistrationStepper, SavesTheResultFilesAsPartregRegisterDoes) {
   EXPECT_FALSE(execute_reporting(state, make_command("save_result", {"anywhere"})));  // nothing registered
   for (const Command& c : parse_script("load " + testing::small_model_path().string() + "\nload " +
                                        testing::observed_cloud_path().string() + "\nload_frames " + frames +
-                                       "\nregister partwise direction=symmetric loss=cauchy"))
+                                       "\nregister partwise direction=canonical loss=cauchy"))
     execute(state, c);
   const std::filesystem::path folder = std::filesystem::temp_directory_path() / "partreg_ui_saved_result";
   std::filesystem::remove_all(folder);
@@ -84,7 +84,7 @@ TEST(RegistrationStepper, SavesTheResultFilesAsPartregRegisterDoes) {
     EXPECT_TRUE(std::filesystem::exists(folder / name)) << name;
   const nlohmann::json result = nlohmann::json::parse(std::ifstream(folder / "result.json"));
   EXPECT_EQ(result["variant"], "partwise");
-  EXPECT_EQ(result["settings"]["direction"], "symmetric");
+  EXPECT_EQ(result["settings"]["direction"], "canonical");
   EXPECT_EQ(result["settings"]["loss"], "cauchy");
   EXPECT_EQ(result["spaces"].size(), state.registration.result->fits.size());
   const io::CloudFile points = io::read_cloud_file(folder / "points.ply");

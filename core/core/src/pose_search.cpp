@@ -4,9 +4,11 @@
 #include <algorithm>
 #include <limits>
 #include <numeric>
+#include <optional>
 
 #include "partreg/core/kdtree.hpp"
 #include "partreg/core/parallel.hpp"
+#include "partreg/core/sampling.hpp"
 
 namespace partreg::core::detail {
 namespace {
@@ -88,6 +90,63 @@ void advance(SpaceSolution& candidate, int steps, const ShapeSpace& space, const
   candidate = std::move(next);
 }
 
+// The rows 3m, 3m + 1, 3m + 2 of a vectorised field (RowMajor points) for every point m in `points`.
+Eigen::MatrixXd field_rows(const Eigen::MatrixXd& field, const std::vector<int>& points) {
+  Eigen::MatrixXd out(3 * static_cast<Eigen::Index>(points.size()), field.cols());
+  for (std::size_t i = 0; i < points.size(); ++i)
+    out.middleRows(3 * static_cast<Eigen::Index>(i), 3) = field.middleRows(3 * points[i], 3);
+  return out;
+}
+
+// The space restricted to some of its canonical points: the same displacement field (kernel_mean,
+// kernel_basis) read at those points, so a latent and pose mean the same on both. The kernel weights
+// (mean, basis) are cut alike only to keep the dimensions; the solver reads the displacements.
+ShapeSpace restricted_space(const ShapeSpace& space, const std::vector<int>& rows) {
+  ShapeSpace out;
+  out.name = space.name;
+  out.beta = space.beta;
+  out.canonical = select_rows(space.canonical, rows);
+  out.mean = field_rows(space.mean, rows);
+  out.basis = field_rows(space.basis, rows);
+  out.kernel_mean = field_rows(space.kernel_mean, rows);
+  out.kernel_basis = field_rows(space.kernel_basis, rows);
+  out.variances = space.variances;
+  out.total_variance = space.total_variance;
+  return out;
+}
+
+// The screening rounds' problem: farthest-point subsets of the canonical points and of the observation.
+// Ranking hypotheses needs their coarse shape only, so the many starts cost a fraction of a full step
+// each; the finalists then run on the whole problem.
+struct CoarseProblem {
+  ShapeSpace space;
+  Points normals;
+  Observation observation;
+};
+
+std::optional<CoarseProblem> coarse_problem(const ShapeSpace& space, const Points& normals,
+                                            const Observation& observation, int points) {
+  const auto count = static_cast<std::size_t>(points);
+  if (points <= 0 || (space.canonical.rows() <= points && observation.points.rows() <= points))
+    return std::nullopt;
+  const auto rows_of = [&](const Points& set) {
+    std::vector<int> rows(static_cast<std::size_t>(set.rows()));
+    if (set.rows() <= points)
+      std::iota(rows.begin(), rows.end(), 0);
+    else
+      rows = farthest_point_indices(set, count);
+    return rows;
+  };
+  CoarseProblem coarse;
+  const std::vector<int> canonical_rows = rows_of(space.canonical);
+  coarse.space = restricted_space(space, canonical_rows);
+  if (normals.rows() > 0) coarse.normals = select_rows(normals, canonical_rows);
+  coarse.observation.points = select_rows(observation.points, rows_of(observation.points));
+  coarse.observation.tree = std::make_unique<KdTree>(coarse.observation.points);
+  coarse.observation.viewpoint = observation.viewpoint;
+  return coarse;
+}
+
 }  // namespace
 
 std::vector<Pose> starting_poses(const Eigen::Vector3d& centre, const Points& canonical,
@@ -149,6 +208,12 @@ SearchOutcome search_poses(const ShapeSpace& space, const Points& normals, const
   }
   std::vector<double> scores(starts.size());
   const auto finalists = static_cast<std::size_t>(std::max(1, init.finalists));
+  const std::optional<CoarseProblem> coarse =
+      candidates.size() > finalists ? coarse_problem(space, normals, observation, init.screening_points)
+                                    : std::nullopt;
+  const ShapeSpace& screen_space = coarse ? coarse->space : space;
+  const Points& screen_normals = coarse ? coarse->normals : normals;
+  const Observation& screen_observation = coarse ? coarse->observation : observation;
   int steps = std::max(1, init.screening_iterations);
   while (candidates.size() > finalists) {
     parallel_for(
@@ -158,8 +223,10 @@ SearchOutcome search_poses(const ShapeSpace& space, const Points& normals, const
             // Never more outer steps in all than the convergence settings allow.
             const int budget =
                 std::min(steps, settings.convergence.outer_iterations - candidates[i].iterations);
-            if (budget > 0) advance(candidates[i], budget, space, normals, observation, settings);
-            scores[i] = selection_score(space, normals, observation, candidates[i], settings);
+            if (budget > 0)
+              advance(candidates[i], budget, screen_space, screen_normals, screen_observation, settings);
+            scores[i] =
+                selection_score(screen_space, screen_normals, screen_observation, candidates[i], settings);
           }
         },
         0, 1);
@@ -186,8 +253,11 @@ SearchOutcome search_poses(const ShapeSpace& space, const Points& normals, const
       static_cast<Eigen::Index>(candidates.size()),
       [&](Eigen::Index begin, Eigen::Index end) {
         for (auto i = static_cast<std::size_t>(begin); i < static_cast<std::size_t>(end); ++i) {
-          const int left = settings.convergence.outer_iterations - candidates[i].iterations;
-          if (left > 0 && !candidates[i].converged)
+          // Steps on the coarse problem do not count against the whole problem's budget, nor does
+          // settling there mean settling here.
+          const int used = coarse ? 0 : candidates[i].iterations;
+          const int left = settings.convergence.outer_iterations - used;
+          if (left > 0 && (coarse || !candidates[i].converged))
             advance(candidates[i], left, space, normals, observation, settings);
           scores[i] = selection_score(space, normals, observation, candidates[i], settings);
         }

@@ -178,6 +178,10 @@ std::vector<RegistrationOption> make_options() {
           "screening-iterations", "outer steps every pose hypothesis gets before the first cut", 1, 1000,
           [](auto& s) -> auto& { return s.initialisation.screening_iterations; }),
       whole(
+          "screening-points",
+          "canonical and observed points the screening rounds match (farthest-point subsets; 0 = all)", 0,
+          1000000, [](auto& s) -> auto& { return s.initialisation.screening_points; }),
+      whole(
           "finalists", "pose hypotheses run to convergence", 1, 10000,
           [](auto& s) -> auto& { return s.initialisation.finalists; }),
       choice<SelectionScore>(

@@ -43,7 +43,9 @@ enum class SelectionScore {
 
 /// The objective: what a pose and latent are scored by.
 struct ObjectiveSettings {
-  Direction direction = Direction::observed_to_canonical;  ///< measured best on partial views
+  /// Both directions measured best on full and partial views of mugs, bowls and drills, with and without the
+  /// refinement (docs/registration.md).
+  Direction direction = Direction::symmetric;
   Loss loss = Loss::huber;
   double loss_scale = 0.02;    ///< Huber/Cauchy scale (normalised length)
   double trim_fraction = 0.1;  ///< trimmed loss: share of the worst correspondences dropped each step, [0, 1)
@@ -69,12 +71,17 @@ struct ObjectiveSettings {
 struct InitialisationSettings {
   int restarts = 12;  ///< yaws about the up axis, evenly spaced (measured: docs/registration.md)
   bool align_principal_axes = false;  ///< also start from the 4 rotations aligning principal axes
-  double max_tilt = 0.0;              ///< tilts of the up axis tried, up to this (radians, [0, pi]); 0 = none
+  /// Tilts of the up axis tried, up to this (radians, [0, pi]; 0 = none). 1 rad keeps the rotation sweep
+  /// flat up to the paper's 0.65 rad turns about every axis, which tilt the up axis by up to 0.9 rad.
+  double max_tilt = 1.0;
   bool any_rotation = false;          ///< an unknown up axis: base rotations spread over SO(3)
   /// The category's up axis (canonical frame, any length > 0); unset: the model's own (CategoryModel::up,
   /// given to `partreg train --up`).
   std::optional<Eigen::Vector3d> up;
   int screening_iterations = 3;                 ///< outer steps every hypothesis gets before the first cut
+  /// The screening rounds match farthest-point subsets of this many canonical and observed points; the
+  /// finalists then run on all of them (0 = screen on all). Measured: docs/registration.md.
+  int screening_points = 300;
   int finalists = 2;                            ///< hypotheses run to convergence
   SelectionScore score = SelectionScore::cost;  ///< what picks the winner
 };
