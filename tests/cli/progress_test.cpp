@@ -223,6 +223,8 @@ TEST_F(Progress, PipedFiguresAndRenderWriteLinesAndQuietNothing) {
   EXPECT_EQ(lines_with(drawn.err, "] read ").size(), 2u) << drawn.err;
   EXPECT_EQ(lines_with(drawn.err, "[3/3 steps, ").size(), 1u) << drawn.err;
   EXPECT_EQ(drawn.err.find('\r'), std::string::npos) << drawn.err;
+  EXPECT_EQ(drawn.err.find("camera at "), std::string::npos) << "a detail line without --verbose";
+  EXPECT_NE(run(render + path("r3.png") + " -v").err.find("camera at "), std::string::npos);
   const Streams quiet_render = run(render + path("r2.png") + " -q");
   EXPECT_EQ(quiet_render.exit_code, 0);
   EXPECT_EQ(quiet_render.err + quiet_render.out, "");

@@ -127,6 +127,13 @@ void run_render(const RenderOptions& options) {
     progress.step(add_file(scene, options.files[i], static_cast<int>(i), options));
   const render::Camera camera =
       camera_of(options, scene, static_cast<double>(settings.width) / settings.height);
+  if (verbosity() == Verbosity::verbose) {
+    const Eigen::IOFormat triple(4, Eigen::DontAlignCols, ", ", ", ", "", "", "(", ")");
+    std::ostringstream line;
+    line << "camera at " << camera.eye.transpose().format(triple) << ", looking at "
+         << camera.target.transpose().format(triple) << ", up " << camera.up.transpose().format(triple);
+    display.print(line.str());
+  }
   render::HeadlessRenderer renderer(settings);
   const render::Image image = renderer.render(scene, camera);
   progress.step("drew " + std::to_string(settings.width) + "x" + std::to_string(settings.height) + " pixels");
