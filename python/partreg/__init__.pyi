@@ -136,10 +136,22 @@ class HistoryStep:
     @property
     def T_observed_canonical(self) -> Float64Array: ...
 
+class Refinement:
+    """What the fit beyond the shape space did; movements are shares of the model's diagonal."""
+    points: int
+    observed: int
+    iterations: int
+    seconds: float
+    mean_movement: float
+    max_movement: float
+    @property
+    def applied(self) -> bool: ...
+
 class RegistrationResult:
     fits: list[SpaceFit]
     history: list[HistoryStep]
     fit: FitStatistics
+    refinement: Refinement
     seconds: float
     @property
     def variant(self) -> str: ...

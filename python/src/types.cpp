@@ -194,12 +194,24 @@ void bind_registration_result(py::module_& m) {
                              [](const core::HistoryStep& s) { return copy_matrix(s.T_observed_canonical); })
       .def_readonly("cost", &core::HistoryStep::cost)
       .def_readonly("seconds", &core::HistoryStep::seconds, "since the start of this space's registration");
+  py::class_<core::RefinementField>(m, "Refinement", "What the fit beyond the shape space did (refine=True).")
+      .def_property_readonly("applied", [](const core::RefinementField& s) { return !s.empty(); },
+                             "False when it was off or saw fewer than 10 observed points (the space fit stands)")
+      .def_readonly("points", &core::RefinementField::points, "fitted points refined (0 when off)")
+      .def_readonly("observed", &core::RefinementField::observed, "of those, the ones counted as observed")
+      .def_readonly("iterations", &core::RefinementField::iterations, "EM iterations run")
+      .def_readonly("seconds", &core::RefinementField::seconds)
+      .def_readonly("mean_movement", &core::RefinementField::mean_movement,
+                    "mean distance it moved the fitted points, / the model's diagonal")
+      .def_readonly("max_movement", &core::RefinementField::max_movement,
+                    "largest distance it moved a fitted point, / the model's diagonal");
   py::class_<core::RegistrationResult, std::shared_ptr<core::RegistrationResult>> result(
       m, "RegistrationResult", "What register() found.");
   result.def_property_readonly("variant", [](const core::RegistrationResult& s) { return core::enum_name(s.variant); })
       .def_readonly("fits", &core::RegistrationResult::fits, "per space: holistic first where it ran, then parts")
       .def_readonly("history", &core::RegistrationResult::history, "every outer step of every space, in order")
       .def_readonly("fit", &core::RegistrationResult::fit)
+      .def_readonly("refinement", &core::RegistrationResult::refinement, "what the refinement did")
       .def_readonly("seconds", &core::RegistrationResult::seconds)
       .def("space_fit", [](const core::RegistrationResult& s, const std::string& name) {
              for (const core::SpaceFit& fit : s.fits)

@@ -149,6 +149,23 @@ TEST_F(Cli, RegisterWritesItsOutputsAndRefusesBadInput) {
             baselines.at("rigid-canonical").at("symmetric_rms_per_diagonal").get<double>() + 1e-12)
       << "the oracle's templates include the canonical";
 
+  // What the refinement (on by default) did; off, it says so and nothing more.
+  const nlohmann::json& refinement = report.at("refinement");
+  EXPECT_TRUE(refinement.at("enabled").get<bool>());
+  EXPECT_TRUE(refinement.at("applied").get<bool>());
+  EXPECT_GT(refinement.at("points").get<int>(), 0);
+  EXPECT_GT(refinement.at("observed").get<int>(), refinement.at("points").get<int>() / 2) << "a full view";
+  EXPECT_LE(refinement.at("observed").get<int>(), refinement.at("points").get<int>());
+  EXPECT_GE(refinement.at("iterations").get<int>(), 1);
+  EXPECT_GT(refinement.at("mean_movement_normalised").get<double>(), 0.0);
+  EXPECT_GE(refinement.at("max_movement_normalised").get<double>(),
+            refinement.at("mean_movement_normalised").get<double>());
+  const Outcome off =
+      run("register " + path("mug.prm") + " " + observed + " --no-refine --json " + path("off.json"));
+  ASSERT_EQ(off.exit_code, 0) << off.output;
+  std::ifstream off_json(dir / "off.json");
+  EXPECT_EQ(nlohmann::json::parse(off_json).at("refinement"), nlohmann::json({{"enabled", false}}));
+
   write("few.xyz", "0 0 0\n1 0 0\n0 1 0\n0 0 1\n1 1 1\n");
   write("nan.xyz", "nan nan nan\n");
   std::string huge;

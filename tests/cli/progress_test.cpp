@@ -127,11 +127,115 @@ TEST_F(Progress, VerboseCpdLogsEveryIteration) {
   EXPECT_EQ(normal.err.find("iteration 1:"), std::string::npos) << normal.err;
 }
 
+// Lines of `text` that hold `part`.
+std::vector<std::string> lines_with(const std::string& text, const std::string& part) {
+  std::vector<std::string> found;
+  for (const std::string& line : lines_of(text))
+    if (line.find(part) != std::string::npos) found.push_back(line);
+  return found;
+}
+
+// A piped command's count lines ("k/n UNIT, m:ss elapsed, ~m:ss left"): a few, the last one the total, none
+// with a bar's carriage return.
+void expect_count_lines(const Streams& streams, std::size_t total, const std::string& unit) {
+  EXPECT_EQ(streams.exit_code, 0) << streams.err;
+  EXPECT_EQ(streams.err.find('\r'), std::string::npos) << "a bar drawn into a log: " << streams.err;
+  const std::vector<std::string> counts =
+      lines_with(streams.err, "/" + std::to_string(total) + " " + unit + ",");
+  ASSERT_GE(counts.size(), 2u) << streams.err;
+  EXPECT_LE(counts.size(), total) << streams.err;
+  for (const std::string& line : counts) EXPECT_NE(line.find(" left"), std::string::npos) << line;
+  EXPECT_NE(counts.back().find(std::to_string(total) + "/" + std::to_string(total)), std::string::npos)
+      << counts.back();
+}
+
+TEST_F(Progress, PipedSynthAndViewsWriteCountLinesAndVerboseOnePerStep) {
+  const Streams synth = run("synth mug --out " + path("mugs") + " --instances 20 --correspondences 50");
+  expect_count_lines(synth, 20, "instances");
+  EXPECT_TRUE(lines_with(synth.err, "made mug_").empty()) << "a detail line without --verbose: " << synth.err;
+  const Streams synth_verbose =
+      run("synth mug --out " + path("mugs_v") + " --instances 20 --correspondences 50 -v");
+  EXPECT_EQ(lines_with(synth_verbose.err, "] made mug_").size(), 20u) << synth_verbose.err;
+
+  const std::string mesh = path("mugs/mug_000/body.obj");
+  const Streams views = run("views " + mesh + " --count 42 --out " + path("views"));
+  expect_count_lines(views, 42, "views");
+  const Streams views_verbose = run("views " + mesh + " --count 42 --out " + path("views_v") + " --verbose");
+  EXPECT_EQ(lines_with(views_verbose.err, "] view_0").size(), 42u) << views_verbose.err;
+  EXPECT_TRUE(std::filesystem::exists(dir / "views_v/view_041.ply"));
+}
+
+TEST_F(Progress, QuietSynthViewsAndLabelWriteNothing) {
+  const Streams synth = run("synth mug --out " + path("mugs") + " --instances 3 --quiet");
+  EXPECT_EQ(synth.exit_code, 0);
+  EXPECT_EQ(synth.err + synth.out, "");
+  const std::string mesh = path("mugs/mug_000/body.obj");
+  const Streams views = run("views " + mesh + " --count 12 --out " + path("views") + " -q");
+  EXPECT_EQ(views.exit_code, 0);
+  EXPECT_EQ(views.err + views.out, "");
+  EXPECT_TRUE(std::filesystem::exists(dir / "views/views.json"));
+  const std::string label = "label " + mesh + " --part top --plane 0,0,0,0,1,0 --out ";
+  const Streams quiet_label = run(label + path("l.json") + " -q");
+  EXPECT_EQ(quiet_label.exit_code, 0);
+  EXPECT_EQ(quiet_label.err + quiet_label.out, "");
+  const Streams normal_label = run(label + path("l2.json"));
+  EXPECT_NE(normal_label.err.find("part top: "), std::string::npos) << normal_label.err;
+  EXPECT_EQ(normal_label.err.find("the selector takes"), std::string::npos) << normal_label.err;
+  const Streams verbose_label = run(label + path("l3.json") + " -v");
+  EXPECT_NE(verbose_label.err.find("the selector takes"), std::string::npos) << verbose_label.err;
+  // An error still shows under --quiet.
+  const Streams missing = run("views " + path("nowhere.obj") + " --out " + path("v2") + " -q");
+  EXPECT_EQ(missing.exit_code, 1);
+  EXPECT_EQ(lines_of(missing.err).size(), 1u) << missing.err;
+}
+
+#ifdef PARTREG_GUI_EXECUTABLE  // built with ui/: the render commands exist
+TEST_F(Progress, PipedFiguresAndRenderWriteLinesAndQuietNothing) {
+  make_mugs();
+  ASSERT_EQ(run("train " + path("mugs") + " --out " + path("mug.prm") + " --points 300 -q").exit_code, 0);
+  const std::string observed = path("mugs/ground_truth/mug_003.ply");
+  const std::string compare = "figure compare " + path("mug.prm") + " " + observed + " --size 80x60 --out ";
+  // Two variants: a registration each (its line), then four panels (counts).
+  const Streams figure = run(compare + path("c.png"));
+  EXPECT_EQ(lines_with(figure.err, "] holistic: mean fit ").size(), 1u) << figure.err;
+  EXPECT_EQ(lines_with(figure.err, "] hol+part: mean fit ").size(), 1u) << figure.err;
+  expect_count_lines(figure, 6, "steps");
+  const Streams quiet_figure = run(compare + path("c2.png") + " --quiet");
+  EXPECT_EQ(quiet_figure.exit_code, 0);
+  EXPECT_EQ(quiet_figure.err + quiet_figure.out, "");
+  EXPECT_TRUE(std::filesystem::exists(dir / "c2.png"));
+
+  // The handle's space: a row per principal direction, five shapes each.
+  const std::string space = "figure space " + path("mug.prm") + " --space handle --size 48x36 --out ";
+  const Streams walk = run(space + path("s.png"));
+  ASSERT_EQ(walk.exit_code, 0) << walk.err;
+  const std::vector<std::string> rows = lines_with(walk.err, " principal directions");
+  ASSERT_EQ(rows.size(), 1u) << walk.err;
+  const std::size_t panels = 5 * std::stoul(rows[0].substr(rows[0].find(": ") + 2));
+  expect_count_lines(walk, panels, "panels");
+  EXPECT_EQ(run(space + path("s2.png") + " -q").err, "");
+
+  const std::string render =
+      "render " + observed + " " + path("mugs/mug_000/body.obj") + " --size 64x48 --out ";
+  const Streams drawn = run(render + path("r.png"));
+  EXPECT_EQ(drawn.exit_code, 0) << drawn.err;
+  EXPECT_EQ(lines_with(drawn.err, "[1/3 steps, ").size(), 1u) << drawn.err;
+  EXPECT_EQ(lines_with(drawn.err, "] read ").size(), 2u) << drawn.err;
+  EXPECT_EQ(lines_with(drawn.err, "[3/3 steps, ").size(), 1u) << drawn.err;
+  EXPECT_EQ(drawn.err.find('\r'), std::string::npos) << drawn.err;
+  EXPECT_EQ(drawn.err.find("camera at "), std::string::npos) << "a detail line without --verbose";
+  EXPECT_NE(run(render + path("r3.png") + " -v").err.find("camera at "), std::string::npos);
+  const Streams quiet_render = run(render + path("r2.png") + " -q");
+  EXPECT_EQ(quiet_render.exit_code, 0);
+  EXPECT_EQ(quiet_render.err + quiet_render.out, "");
+}
+#endif
+
 TEST_F(Progress, EveryCommandTakesQuietAndVerbose) {
   std::vector<std::string> commands = {"cpd",      "train", "info", "synth", "label",
                                        "register", "views", "eval", "report"};
 #ifdef PARTREG_GUI_EXECUTABLE  // built with ui/: the render commands exist too
-  commands.insert(commands.end(), {"render", "figure"});
+  commands.insert(commands.end(), {"render", "figure", "figure compare", "figure space"});
 #endif
   for (const std::string& command : commands) {
     const Streams help = run(command + " --help");

@@ -113,6 +113,13 @@ TEST(Refinement, LowersTheErrorOfAFullView) {
   // A full view without a viewpoint: all but the few the space put beyond the gate count as seen.
   EXPECT_GT(fine.refinement.observed, fine.refinement.points * 95 / 100);
   EXPECT_TRUE(space.refinement.empty());
+  // The movement it reports is how far it moved the space fit's points (the same space fit in both runs),
+  // as a share of the model's diagonal.
+  const Eigen::VectorXd moved =
+      (fine.deformed - space.deformed).rowwise().norm() / setup().model.normalization.scale;
+  EXPECT_NEAR(fine.refinement.mean_movement, moved.mean(), 1e-6 * moved.mean());
+  EXPECT_NEAR(fine.refinement.max_movement, moved.maxCoeff(), 1e-6 * moved.maxCoeff());
+  EXPECT_GT(fine.refinement.mean_movement, 0.001);
 }
 
 TEST(Refinement, KeepsTheUnseenSideOfAPartialViewAtTheSpacesPrediction) {

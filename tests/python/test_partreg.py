@@ -79,6 +79,14 @@ def test_register_equals_the_command_line(partreg, registered, cli_register, cli
     for figure in ("mean", "p90", "mean_normalised", "p90_normalised"):
         assert getattr(registered.fit, figure) == pytest.approx(cli_register["fit"][figure], rel=EXACT)
     assert registered.fit.mean_normalised < 0.05, "a real mug fits within 5% of the diagonal"
+    # The refinement (on by default) reports the same as the command line's result JSON.
+    refinement, expected = registered.refinement, cli_register["refinement"]
+    assert expected["enabled"] and expected["applied"] and refinement.applied
+    for count in ("points", "observed", "iterations"):
+        assert getattr(refinement, count) == expected[count]
+    assert refinement.mean_movement == pytest.approx(expected["mean_movement_normalised"], rel=EXACT)
+    assert refinement.max_movement == pytest.approx(expected["max_movement_normalised"], rel=EXACT)
+    assert 0 < refinement.mean_movement < refinement.max_movement < 0.1, "it moves points, a little"
     # The points file holds float32 coordinates: equal to float32 rounding.
     cli_points = partreg.read_cloud(cli_dir / "register_points.ply")
     assert registered.deformed.shape == cli_points.shape

@@ -47,6 +47,7 @@ void set_quiet() {
 
 void add_verbosity_flags(CLI::App& app) {
   for (CLI::App* command : app.get_subcommands({})) {
+    add_verbosity_flags(*command);  // nested ones too: `figure compare ... --quiet`
     CLI::Option* quiet = command->add_flag_callback("-q,--quiet", set_quiet,
                                                     "print nothing on stderr but an error's one line");
     command
@@ -82,6 +83,11 @@ ProgressDisplay::~ProgressDisplay() { finish(); }
 
 void ProgressDisplay::finish() {
   if (bar_drawn_) std::cerr << '\n' << std::flush;
+  bar_drawn_ = false;
+}
+
+void ProgressDisplay::print(const std::string& line) {
+  std::cerr << (bar_drawn_ ? "\r\033[K" : "") << line << '\n' << std::flush;
   bar_drawn_ = false;
 }
 

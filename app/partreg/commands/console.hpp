@@ -18,7 +18,8 @@ namespace partreg::app {
 /// verbose: also the detail lines (every progress report, per-fit figures).
 enum class Verbosity { quiet, normal, verbose };
 
-/// Adds -q/--quiet and -v/--verbose to every subcommand of `app`; call once, after adding the subcommands.
+/// Adds -q/--quiet and -v/--verbose to every subcommand of `app`, nested ones included; call once, after
+/// adding the subcommands.
 /// --quiet silences stderr from the moment it is parsed until restore_error_stream().
 void add_verbosity_flags(CLI::App& app);
 
@@ -58,6 +59,8 @@ class ProgressDisplay {
   core::ProgressListener listener();
   /// Ends a bar still on its line with a newline, so that later lines start on their own.
   void finish();
+  /// Writes `line` on stderr above the bar (a warning, a note between steps); the next report redraws the bar.
+  void print(const std::string& line);
 
  private:
   using Clock = std::chrono::steady_clock;

@@ -6,10 +6,12 @@
 #include <sstream>
 
 #include "partreg/commands/common.hpp"
+#include "partreg/commands/console.hpp"
 #include "partreg/commands/registration_flags.hpp"
 #include "partreg/commands/render_common.hpp"
 #include "partreg/core/errors.hpp"
 #include "partreg/core/parallel.hpp"
+#include "partreg/core/progress.hpp"
 #include "partreg/core/registration.hpp"
 #include "partreg/io/model_file.hpp"
 #include "partreg/render/figure.hpp"
@@ -71,19 +73,33 @@ void run_compare(const FigureOptions& options) {
   const core::Points observed = read_points_logged(options.observed_path, options.observed_samples, 1);
   render::Grid grid;
   grid.columns = static_cast<int>(runs.size());
+  // One bar over the registrations (a line each) and then the panels (two per variant, counts only).
+  ProgressDisplay display({"steps", /*lines_are_detail=*/false, /*log_every_percent=*/25});
+  const std::size_t steps = 3 * runs.size();
+  const core::ProgressListener listener = display.listener();
+  core::ProgressCounter registered(steps, listener);
   std::vector<render::Panel> overlays;  // the second row: each variant's fit over the observation
   for (const core::RegistrationSettings& run : runs) {
     const core::RegistrationResult result = core::register_observation(model, observed, run);
     const std::string variant = core::enum_name(result.variant);
-    std::ostringstream title;
+    std::ostringstream title, line;
     title.precision(2);
     title << std::fixed << variant << ": mean fit " << 100.0 * result.fit.mean_normalised << "% of diagonal";
-    std::cerr << title.str() << " (" << result.seconds << " s)\n";
+    line << title.str() << " (" << result.seconds << " s)";
+    registered.step(line.str());
+    if (verbosity() == Verbosity::verbose)
+      for (const core::SpaceFit& fit : result.fits)
+        display.print("  space " + fit.space + ": " + std::to_string(fit.iterations) + " steps (" +
+                      core::enum_name(fit.stop_reason) + "), " + std::to_string(fit.seconds) + " s");
     grid.panels.push_back(render::comparison_panel(model, observed, result, title.str(), settings.view));
     overlays.push_back(render::overlay_panel(model, observed, result, variant + ": overlay"));
   }
   for (render::Panel& overlay : overlays) grid.panels.push_back(std::move(overlay));
-  write_figure(render::render_grid(grid, settings), options.out, start);
+  const render::Image image = render::render_grid(grid, settings, [&](const core::Progress& panel) {
+    display(core::Progress{runs.size() + panel.done, steps, ""});  // the panel's title says nothing new
+  });
+  display.finish();
+  write_figure(image, options.out, start);
 }
 
 void run_space(const FigureOptions& options) {
@@ -93,7 +109,10 @@ void run_space(const FigureOptions& options) {
   const core::CategoryModel model = io::read_model(options.model_path);
   const render::Grid grid = render::shape_space_grid(model, options.space);
   std::cerr << "space " << options.space << ": " << grid.row_labels.size() << " principal directions\n";
-  write_figure(render::render_grid(grid, settings), options.out, start);
+  ProgressDisplay display({"panels", /*lines_are_detail=*/true, /*log_every_percent=*/20});
+  const render::Image image = render::render_grid(grid, settings, display.listener());
+  display.finish();
+  write_figure(image, options.out, start);
 }
 
 void add_shared_options(CLI::App* command, FigureOptions& o, const char* default_size) {

@@ -8,6 +8,7 @@
 #include <sstream>
 
 #include "partreg/commands/commands.hpp"
+#include "partreg/commands/console.hpp"
 #include "partreg/core/errors.hpp"
 #include "partreg/core/part_selection.hpp"
 #include "partreg/io/labels_file.hpp"
@@ -83,6 +84,8 @@ void run_label(const LabelOptions& options) {
     throw InputError("the selector selects no face of " + options.mesh_path + "; the mesh spans " +
                      bounds.str());
   }
+  detail_log() << "the selector takes " << std::count(selected.begin(), selected.end(), true) << " of "
+               << mesh.faces.rows() << " faces\n";
   const int part = labels.part_index(options.part);
   for (std::size_t f = 0; f < selected.size(); ++f)
     if (selected[f]) labels.labels[static_cast<Eigen::Index>(f)] = part;

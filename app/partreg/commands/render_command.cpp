@@ -6,11 +6,14 @@
 #include <map>
 #include <memory>
 #include <sstream>
+#include <string>
 
 #include "partreg/commands/commands.hpp"
 #include "partreg/commands/common.hpp"
+#include "partreg/commands/console.hpp"
 #include "partreg/commands/render_common.hpp"
 #include "partreg/core/errors.hpp"
+#include "partreg/core/progress.hpp"
 #include "partreg/io/atomic_file.hpp"
 #include "partreg/io/cloud_io.hpp"
 #include "partreg/io/geometry_io.hpp"
@@ -55,8 +58,10 @@ Eigen::VectorXi mesh_vertex_part(const std::string& path, const core::Mesh& mesh
   return part;
 }
 
-// Adds one file to the scene, coloured by its index, by part or not at all.
-void add_file(render::Scene& scene, const std::string& path, int index, const RenderOptions& options) {
+// Adds one file to the scene, coloured by its index, by part or not at all. Returns what it read (and a
+// warning line after it when parts were asked for and the file has none).
+std::string add_file(render::Scene& scene, const std::string& path, int index, const RenderOptions& options) {
+  std::ostringstream line;
   render::Colors colors;
   Eigen::VectorXi part;
   // By part, files without parts are grey: the part palette is the file palette.
@@ -69,8 +74,8 @@ void add_file(render::Scene& scene, const std::string& path, int index, const Re
     item.color = file_color;
     item.shading = options.flat ? render::Shading::flat : render::Shading::smooth;
     item.wireframe = options.wireframe;
-    std::cerr << "read " << path << ": " << item.mesh.vertices.rows() << " vertices, "
-              << item.mesh.faces.rows() << " triangles\n";
+    line << "read " << path << ": " << item.mesh.vertices.rows() << " vertices, " << item.mesh.faces.rows()
+         << " triangles";
     if (part.size() > 0) item.vertex_colors = render::part_colors(part);
     scene.meshes.push_back(std::move(item));
   } else {
@@ -81,12 +86,13 @@ void add_file(render::Scene& scene, const std::string& path, int index, const Re
     points.radius = options.point_radius;
     const auto found = file.attributes.integers.find("part");
     if (options.color_by == "part" && found != file.attributes.integers.end()) part = found->second;
-    std::cerr << "read " << path << ": " << points.positions.rows() << " points\n";
+    line << "read " << path << ": " << points.positions.rows() << " points";
     if (part.size() > 0) points.colors = render::part_colors(part);
     scene.point_sets.push_back(std::move(points));
   }
   if (options.color_by == "part" && part.size() == 0)
-    std::cerr << "partreg: warning: " << path << " has no part labels; drawn in grey\n";
+    line << "\npartreg: warning: " << path << " has no part labels; drawn in grey";
+  return line.str();
 }
 
 render::Camera camera_of(const RenderOptions& options, const render::Scene& scene, double aspect) {
@@ -113,12 +119,26 @@ void run_render(const RenderOptions& options) {
   core::parse_enum<render::View>(options.view);
   check_output_folder(options.out);
   render::Scene scene;
+  // Large meshes take a second or more to read and draw: a step per file read, one for the drawing.
+  ProgressDisplay display({"steps", /*lines_are_detail=*/false, /*log_every_percent=*/0});
+  const core::ProgressListener listener = display.listener();
+  core::ProgressCounter progress(options.files.size() + 1, listener);
   for (std::size_t i = 0; i < options.files.size(); ++i)
-    add_file(scene, options.files[i], static_cast<int>(i), options);
+    progress.step(add_file(scene, options.files[i], static_cast<int>(i), options));
   const render::Camera camera =
       camera_of(options, scene, static_cast<double>(settings.width) / settings.height);
+  if (verbosity() == Verbosity::verbose) {
+    const Eigen::IOFormat triple(4, Eigen::DontAlignCols, ", ", ", ", "", "", "(", ")");
+    std::ostringstream line;
+    line << "camera at " << camera.eye.transpose().format(triple) << ", looking at "
+         << camera.target.transpose().format(triple) << ", up " << camera.up.transpose().format(triple);
+    display.print(line.str());
+  }
   render::HeadlessRenderer renderer(settings);
-  render::write_png(options.out, renderer.render(scene, camera));
+  const render::Image image = renderer.render(scene, camera);
+  progress.step("drew " + std::to_string(settings.width) + "x" + std::to_string(settings.height) + " pixels");
+  display.finish();
+  render::write_png(options.out, image);
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   std::cerr << "wrote " << options.out << " (" << settings.width << "x" << settings.height << ", " << seconds
             << " s)\n";

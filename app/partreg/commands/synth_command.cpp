@@ -4,10 +4,13 @@
 #include <iostream>
 #include <memory>
 #include <nlohmann/json.hpp>
+#include <string>
 
 #include "partreg/commands/commands.hpp"
 #include "partreg/commands/common.hpp"
+#include "partreg/commands/console.hpp"
 #include "partreg/core/errors.hpp"
+#include "partreg/core/progress.hpp"
 #include "partreg/core/synthetic.hpp"
 #include "partreg/io/cloud_io.hpp"
 #include "partreg/io/mesh_io.hpp"
@@ -40,8 +43,13 @@ void run_synth(const SynthOptions& options) {
   const fs::path out = folder.staging();
   fs::create_directories(out / "ground_truth");
   nlohmann::json parameters = nlohmann::json::object();
-  for (const core::SyntheticInstance& instance :
-       core::make_synthetic_category(category, options.instances, options.seed)) {
+  // Hundreds of instances take seconds: a bar, each instance's line a detail. One instance at a time (as
+  // make_synthetic_category makes them), so memory stays that of one.
+  ProgressDisplay display({"instances", /*lines_are_detail=*/true, /*log_every_percent=*/10});
+  const core::ProgressListener listener = display.listener();
+  core::ProgressCounter progress(static_cast<std::size_t>(options.instances), listener);
+  for (int index = 0; index < options.instances; ++index) {
+    const core::SyntheticInstance instance = core::make_synthetic_instance(category, options.seed, index);
     fs::create_directories(out / instance.name);
     for (const core::SyntheticPart& part : instance.parts)
       io::write_mesh(out / instance.name / (part.name + ".obj"), part.mesh);
@@ -49,8 +57,9 @@ void run_synth(const SynthOptions& options) {
                        core::sample_correspondences(category, instance.shape_parameters, options.correspondences,
                                                     options.seed));
     parameters[instance.name] = instance.shape_parameters;
-    std::cerr << "made " << instance.name << " (" << instance.parts.size() << " parts)\n";
+    progress.step("made " + instance.name + " (" + std::to_string(instance.parts.size()) + " parts)");
   }
+  display.finish();
   const nlohmann::json description = {{"category", core::enum_name(category)},
                                       {"seed", options.seed},
                                       {"parts", core::part_names(category)},

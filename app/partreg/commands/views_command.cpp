@@ -3,13 +3,16 @@
 #include <cstdio>
 #include <iostream>
 #include <memory>
+#include <string>
 #include <tuple>
 
 #include "partreg/commands/commands.hpp"
 #include "partreg/commands/common.hpp"
+#include "partreg/commands/console.hpp"
 #include "partreg/commands/registration_flags.hpp"
 #include "partreg/core/errors.hpp"
 #include "partreg/core/parallel.hpp"
+#include "partreg/core/progress.hpp"
 #include "partreg/eval/views.hpp"
 #include "partreg/io/cloud_io.hpp"
 #include "partreg/io/geometry_io.hpp"
@@ -48,6 +51,10 @@ void run_views(ViewsOptions& options) {
                             {"resolution", {options.camera.width, options.camera.height}},
                             {"fov_degrees", options.camera.fov_degrees},
                             {"views", nlohmann::json::array()}};
+  // Many views of a large mesh or at a high resolution take seconds: a bar, each view's line a detail.
+  ProgressDisplay display({"views", /*lines_are_detail=*/true, /*log_every_percent=*/10});
+  const core::ProgressListener listener = display.listener();
+  core::ProgressCounter progress(directions.size(), listener);
   for (std::size_t v = 0; v < directions.size(); ++v) {
     const eval::View view = caster.cast(directions[v], options.camera);
     char name[32];
@@ -57,8 +64,9 @@ void run_views(ViewsOptions& options) {
                                 {"points", view.points.rows()},
                                 {"direction", {view.direction.x(), view.direction.y(), view.direction.z()}},
                                 {"viewpoint", {view.viewpoint.x(), view.viewpoint.y(), view.viewpoint.z()}}});
-    std::cerr << name << ": " << view.points.rows() << " points\n";
+    progress.step(std::string(name) + ": " + std::to_string(view.points.rows()) + " points");
   }
+  display.finish();
   write_json_or_stdout(listing, (folder.staging() / "views.json").string(), /*log=*/false);
   folder.commit();
   std::cerr << "wrote " << directions.size() << " views and views.json (directions, viewpoints) to "

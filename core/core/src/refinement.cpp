@@ -159,6 +159,9 @@ RefinementField refine_fit(const Points& fitted, const Points& observed,
   field.weights = weights;
   field.beta = settings.beta;
   field.iterations = outcome.iterations;
+  const Eigen::VectorXd movement = field.displacement_at(fitted).rowwise().norm();
+  field.mean_movement = movement.mean();
+  field.max_movement = movement.maxCoeff();
   field.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return field;
 }

@@ -18,6 +18,25 @@ nlohmann::json matrix_json(const Eigen::Matrix4d& matrix) {
   return rows;
 }
 
+namespace {
+
+// What the refinement did: whether it was asked for, whether it ran (enough observed points), what it counted
+// and how far it moved the space fit.
+nlohmann::json refinement_json(const core::RefinementField& field, const core::RefinementSettings& settings) {
+  if (!settings.enabled) return {{"enabled", false}};
+  return {{"enabled", true},
+          {"applied", !field.empty()},
+          {"points", field.points},
+          {"observed", field.observed},
+          {"centres", field.centres.rows()},
+          {"iterations", field.iterations},
+          {"seconds", field.seconds},
+          {"mean_movement_normalised", field.mean_movement},
+          {"max_movement_normalised", field.max_movement}};
+}
+
+}  // namespace
+
 nlohmann::json result_json(const core::RegistrationResult& result, const core::RegistrationSettings& settings,
                            const ResultSource& source) {
   nlohmann::json spaces = nlohmann::json::array();
@@ -48,6 +67,7 @@ nlohmann::json result_json(const core::RegistrationResult& result, const core::R
             {"p90", result.fit.p90},
             {"mean_normalised", result.fit.mean_normalised},
             {"p90_normalised", result.fit.p90_normalised}}},
+          {"refinement", refinement_json(result.refinement, settings.refinement)},
           {"seconds", result.seconds}};
 }
 

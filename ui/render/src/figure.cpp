@@ -76,7 +76,8 @@ core::RegistrationResult walk_result(const core::CategoryModel& model, const std
 
 }  // namespace
 
-Image render_grid(const Grid& grid, const FigureSettings& settings) {
+Image render_grid(const Grid& grid, const FigureSettings& settings,
+                  const core::ProgressListener& progress) {
   const int columns = std::max(grid.columns, 1);
   const int rows = (static_cast<int>(grid.panels.size()) + columns - 1) / columns;
   const int scale = settings.text_scale;
@@ -104,6 +105,7 @@ Image render_grid(const Grid& grid, const FigureSettings& settings) {
     all.point_sets.push_back({panel.scene.all_points(), {}, Color::Zero(), 0.0});
   const core::Points shared_points = all.all_points();
   const double aspect = static_cast<double>(settings.panel_width) / settings.panel_height;
+  core::ProgressCounter rendered(grid.panels.size(), progress);
   for (std::size_t i = 0; i < grid.panels.size(); ++i) {
     const Panel& panel = grid.panels[i];
     const Camera camera =
@@ -114,6 +116,7 @@ Image render_grid(const Grid& grid, const FigureSettings& settings) {
     const int y = top + static_cast<int>(i) / columns * (settings.panel_height + kGap);
     blit(canvas, image, x, y);
     if (!panel.title.empty()) draw_text(canvas, x + kGap, y + kGap, panel.title, scale);
+    rendered.step(panel.title);
   }
   for (std::size_t r = 0; r < grid.row_labels.size() && static_cast<int>(r) < rows; ++r)
     draw_text(canvas, kGap,

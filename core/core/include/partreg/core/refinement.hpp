@@ -25,6 +25,9 @@ struct RefinementField {
   int observed = 0;   ///< of those, the ones treated as observed (pulled to the data)
   int iterations = 0;  ///< EM iterations run
   double seconds = 0.0;
+  /// How far the field moved the fitted points: mean and largest |v(p)| over them, in normalised length (the
+  /// model's diagonal is 1; transformed() leaves them so). 0 when empty.
+  double mean_movement = 0.0, max_movement = 0.0;
 
   bool empty() const { return centres.rows() == 0; }
   /// v(p) at every row of `positions` (frame units); zeros when empty.

@@ -28,8 +28,10 @@ struct ResultSource {
 
 /// The result as JSON: format version, model, observation, variant and every registration setting by its
 /// option name (registration_options.hpp); per space its latent, pose (T_observed_canonical), scale, cost,
-/// steps, stop reason and seconds; the closest-point fit (data units and normalised by the model's diagonal)
-/// and the total time.
+/// steps, stop reason and seconds; the closest-point fit (data units and normalised by the model's diagonal);
+/// what the refinement did (`refinement`: enabled, and when it was, applied, points, observed, centres,
+/// iterations, seconds and the mean and largest movement of the fitted points as a share of the diagonal) and
+/// the total time.
 nlohmann::json result_json(const core::RegistrationResult& result, const core::RegistrationSettings& settings,
                            const ResultSource& source);
 

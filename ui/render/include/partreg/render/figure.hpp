@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "partreg/core/category_model.hpp"
+#include "partreg/core/progress.hpp"
 #include "partreg/core/registration.hpp"
 #include "partreg/render/headless.hpp"
 #include "partreg/render/scene.hpp"
@@ -39,9 +40,11 @@ struct FigureSettings {
   bool shared_camera = true;  ///< one camera fitted to every panel, so sizes compare across panels
 };
 
-/// Renders every panel headlessly and lays the grid out with its titles and labels. Throws InputError when
-/// the OSMesa context cannot be created.
-Image render_grid(const Grid& grid, const FigureSettings& settings);
+/// Renders every panel headlessly and lays the grid out with its titles and labels. `progress` hears of each
+/// panel rendered (one step each, the panel's title as the line). Throws InputError when the OSMesa context
+/// cannot be created.
+Image render_grid(const Grid& grid, const FigureSettings& settings,
+                  const core::ProgressListener& progress = {});
 
 /// The panel of one registration: the observed points in red and, beside them on the right (as seen from
 /// `view`), the deformed canonical coloured by part (its mesh when the model has one, else its points).
