@@ -5,7 +5,10 @@
 #include <benchmark/benchmark.h>
 #include <sys/resource.h>
 
+#include <chrono>
+#include <cstdio>
 #include <cstdlib>
+#include <memory>
 #include <random>
 
 #include "partreg/core/cpd.hpp"
@@ -52,6 +55,19 @@ Points drill_at(const std::string& name, int count) {
   return out;
 }
 
+// PARTREG_BENCH_TRACE=1: one line per EM iteration on stderr (milliseconds since the last, the EM line).
+partreg::core::ProgressListener trace_listener() {
+  const char* trace = std::getenv("PARTREG_BENCH_TRACE");
+  if (!trace || std::string(trace) != "1") return {};
+  auto last = std::make_shared<std::chrono::steady_clock::time_point>(std::chrono::steady_clock::now());
+  return [last](const partreg::core::Progress& p) {
+    const auto now = std::chrono::steady_clock::now();
+    std::fprintf(stderr, "%8.2f ms  %s\n", std::chrono::duration<double, std::milli>(now - *last).count(),
+                 p.line.c_str());
+    *last = now;
+  };
+}
+
 double peak_rss_mb() {
   rusage usage{};
   getrusage(RUSAGE_SELF, &usage);
@@ -78,6 +94,7 @@ void BM_NonrigidCpdDrills(benchmark::State& state) {
   const int count = static_cast<int>(state.range(0));
   const Points source = drill_at("drill_1.pcd", count), target = drill_at("drill_4.pcd", count);
   partreg::core::NonrigidCpdSettings settings;  // beta = 2, lambda = 2 (normalised units)
+  settings.progress = trace_listener();
   int iterations = 0;
   double fit = 0.0;
   for (auto _ : state) {
@@ -97,6 +114,7 @@ BENCHMARK(BM_NonrigidCpdDrills)
     ->Arg(5000)
     ->Arg(20000)
     ->Unit(benchmark::kMillisecond)
+    ->MeasureProcessCPUTime()
     ->UseRealTime();
 
 void BM_RigidCpdDrills(benchmark::State& state) {
@@ -110,7 +128,9 @@ void BM_RigidCpdDrills(benchmark::State& state) {
   int iterations = 0;
   double fit = 0.0;
   for (auto _ : state) {
-    const auto result = partreg::core::register_rigid(source, target, {});
+    partreg::core::RigidCpdSettings settings;
+    settings.progress = trace_listener();
+    const auto result = partreg::core::register_rigid(source, target, settings);
     iterations = result.iterations;
     fit = fit_of_diagonal(result.moved, target);
     benchmark::DoNotOptimize(result.moved.data());
@@ -119,7 +139,7 @@ void BM_RigidCpdDrills(benchmark::State& state) {
   state.counters["fit_of_diagonal"] = fit;
   state.counters["peak_rss_MB"] = peak_rss_mb();
 }
-BENCHMARK(BM_RigidCpdDrills)->Arg(1000)->Arg(5000)->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK(BM_RigidCpdDrills)->Arg(1000)->Arg(5000)->Unit(benchmark::kMillisecond)->MeasureProcessCPUTime()->UseRealTime();
 
 }  // namespace
 
