@@ -1,7 +1,10 @@
 // CPD speed on real drills (../shared/data/drills): non-rigid at 500-20000 points, rigid at 1000 and 5000.
 // Run: ./build/tests/bench/cpd_benchmark --benchmark_repetitions=5 --benchmark_report_aggregates_only=true
-// The 100,000-point case is manual (about 30 CPU seconds a run, one run):
+// The 100,000-point case is manual (about 1 CPU second a run, one run):
 //   PARTREG_BENCH_100K=1 ./build/tests/bench/cpd_benchmark --benchmark_filter=100000
+// PARTREG_BENCH_EXACT=1 runs the exact E-step instead (the fit's reference; minutes from 20,000 points), and
+// PARTREG_BENCH_TRACE=1 prints every EM iteration's time and sigma2. The CPU column is the process's (both
+// E-step threads), the time column wall time.
 #include <benchmark/benchmark.h>
 #include <sys/resource.h>
 
@@ -55,6 +58,12 @@ Points drill_at(const std::string& name, int count) {
   return out;
 }
 
+// PARTREG_BENCH_EXACT=1: the exact E-step (every pair, plain EM on all points), the reference for the fit.
+bool exact_e_step() {
+  const char* exact = std::getenv("PARTREG_BENCH_EXACT");
+  return exact && std::string(exact) == "1";
+}
+
 // PARTREG_BENCH_TRACE=1: one line per EM iteration on stderr (milliseconds since the last, the EM line).
 partreg::core::ProgressListener trace_listener() {
   const char* trace = std::getenv("PARTREG_BENCH_TRACE");
@@ -95,6 +104,7 @@ void BM_NonrigidCpdDrills(benchmark::State& state) {
   const Points source = drill_at("drill_1.pcd", count), target = drill_at("drill_4.pcd", count);
   partreg::core::NonrigidCpdSettings settings;  // beta = 2, lambda = 2 (normalised units)
   settings.progress = trace_listener();
+  settings.exact_e_step = exact_e_step();
   int iterations = 0;
   double fit = 0.0;
   for (auto _ : state) {
@@ -130,6 +140,7 @@ void BM_RigidCpdDrills(benchmark::State& state) {
   for (auto _ : state) {
     partreg::core::RigidCpdSettings settings;
     settings.progress = trace_listener();
+    settings.exact_e_step = exact_e_step();
     const auto result = partreg::core::register_rigid(source, target, settings);
     iterations = result.iterations;
     fit = fit_of_diagonal(result.moved, target);
@@ -139,7 +150,12 @@ void BM_RigidCpdDrills(benchmark::State& state) {
   state.counters["fit_of_diagonal"] = fit;
   state.counters["peak_rss_MB"] = peak_rss_mb();
 }
-BENCHMARK(BM_RigidCpdDrills)->Arg(1000)->Arg(5000)->Unit(benchmark::kMillisecond)->MeasureProcessCPUTime()->UseRealTime();
+BENCHMARK(BM_RigidCpdDrills)
+    ->Arg(1000)
+    ->Arg(5000)
+    ->Unit(benchmark::kMillisecond)
+    ->MeasureProcessCPUTime()
+    ->UseRealTime();
 
 }  // namespace
 
@@ -150,6 +166,7 @@ int main(int argc, char** argv) {
         ->Arg(100000)
         ->Iterations(1)
         ->Unit(benchmark::kMillisecond)
+        ->MeasureProcessCPUTime()
         ->UseRealTime();
   benchmark::Initialize(&argc, argv);
   if (benchmark::ReportUnrecognizedArguments(argc, argv)) return 1;

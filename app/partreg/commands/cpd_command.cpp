@@ -162,8 +162,9 @@ void add_cpd_command(CLI::App& app) {
       ->capture_default_str()
       ->check(CLI::Range(1, 1000000));
   command->add_option("--coarse-points", options->coarse_points,
-                      "fast path: EM first settles on random subsets of this many points of each set, then "
-                      "polishes on all (default: rigid and affine 1000, nonrigid 4000; 0 = never, else >= 50)");
+                      "fast path: EM first settles on random subsets of this many points of each set, "
+                      "then polishes on all (default: rigid and affine 1000, nonrigid 4000; 0 = never, "
+                      "else >= 50)");
   command->add_flag("--scale", options->scale, "rigid mode: estimate a uniform scale too");
   command->add_flag("--exact", options->exact,
                     "nonrigid mode: the exact solver (full kernel, no truncation)");

@@ -362,10 +362,10 @@ namespace {
 
 void report_iteration(const EmControl& control, int iteration, double sigma2, double change) {
   std::ostringstream line;
-  line << "iteration " << control.iteration_offset + iteration << ": sigma2 " << sigma2 << ", relative change " << change;
+  const int number = control.iteration_offset + iteration;
+  line << "iteration " << number << ": sigma2 " << sigma2 << ", relative change " << change;
   const auto cap = static_cast<std::size_t>(control.iteration_offset + control.max_iterations);
-  control.progress(
-      Progress{static_cast<std::size_t>(control.iteration_offset + iteration), cap, line.str(), /*bounded=*/true});
+  control.progress(Progress{static_cast<std::size_t>(number), cap, line.str(), /*bounded=*/true});
 }
 
 }  // namespace

@@ -116,11 +116,12 @@ NonrigidCpdResult register_nonrigid(const Points& source_in, const Points& targe
   // every stage). The data term sums over the target, the regulariser does not: lambda scaled by the
   // stage's share of the target gives a subset the full problem's balance.
   int iterations = 0;
-  const auto stages = fast ? detail::coarse_stages(m, target.rows(), settings.coarse_points,
-                                                   settings.exact_e_step)
-                           : std::vector<detail::CoarseStage>{};
+  const auto stages =
+      fast ? detail::coarse_stages(m, target.rows(), settings.coarse_points, settings.exact_e_step)
+           : std::vector<detail::CoarseStage>{};
   for (const detail::CoarseStage& rows : stages) {
-    const Points stage_source = select_rows(source, rows.source), stage_target = select_rows(target, rows.target);
+    const Points stage_source = select_rows(source, rows.source),
+                 stage_target = select_rows(target, rows.target);
     const Eigen::MatrixXd stage_factor = low_rank.factor(rows.source, Eigen::all);
     const double stage_lambda =
         settings.lambda * static_cast<double>(rows.target.size()) / static_cast<double>(target.rows());

@@ -142,8 +142,7 @@ RigidCpdResult register_rigid(const Points& source_in, const Points& target_in,
         const double trace = (m.cross.transpose() * r.rotation).trace();
         r.scale = settings.estimate_scale ? trace / m.source_spread : 1.0;
         r.translation = m.mu_target - r.scale * r.rotation * m.mu_source;
-        const double explained =
-            settings.estimate_scale ? r.scale * trace : 2.0 * trace - m.source_spread;
+        const double explained = settings.estimate_scale ? r.scale * trace : 2.0 * trace - m.source_spread;
         return std::abs(m.target_spread - explained) / (3.0 * e.Np);
       });
   // Back to the caller's frame: x = k x' + c with x' = s R y' + t' and y' = (y - c) / k.
