@@ -22,8 +22,9 @@ struct EStepSettings {
   int threads = 0;              ///< 0 = all cores
   /// Every source-target pair in double precision: the reference the fast path is tested against.
   bool exact = false;
-  /// Fast path: kernel values below this are skipped (a radius of sqrt(2 ln(1/t)) sigma).
-  double truncation = 1e-4;
+  /// Fast path: kernel values below this are skipped (a radius of sqrt(2 ln(1/t)) sigma). CPD's settings
+  /// set it (1e-4); this default serves the registration's refinement, which leaves it as it was.
+  double truncation = 1e-8;
   /// Fast path: points sharing a voxel cell of this edge, in units of sigma, are merged into one weighted
   /// point at their centroid (on both sides). The kernel then changes by O(edge^2 / 12) relatively, and the
   /// first-order errors cancel in the M-steps' sums; 0 keeps every point on its own.
