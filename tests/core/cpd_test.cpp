@@ -139,7 +139,9 @@ NonrigidCpdSettings with_coarse_points(int coarse_points) {
 // At 500 points the reference is the exact solver (full kernel, every pair); at 2000 and 5000 its M x M
 // solve would take minutes, so there both runs share the low-rank kernel and differ in the E-step and the EM
 // schedule alone. The default coarse stage (4000 points) runs from 8000 points on, so at 5000 points also
-// a first stage of 1000, then the polish on all.
+// a first stage of 2500 (half the points, as the default's first stage at 8000), then the polish on all.
+// (Measured distances: 8e-5 without a coarse stage; 0.0046 with 2500, 0.0049 with 2000, 0.0068 with 1500
+// and 0.0093 with 1000: the coarse stage, not the E-step, is what this bound constrains.)
 TEST(NonrigidCpd, FastPathAgreesWithExactPath) {
   const Points source = asymmetric_shape(500, 6), target = smoothly_displaced(asymmetric_shape(450, 7));
   NonrigidCpdSettings exact_solver = agreement_settings();
@@ -148,7 +150,7 @@ TEST(NonrigidCpd, FastPathAgreesWithExactPath) {
   const NonrigidCpdResult fast = register_nonrigid(source, target, agreement_settings());
   EXPECT_LT(mean_row_distance(exact.moved, fast.moved), 0.005 * bounding_box_diagonal(target));
   EXPECT_GT(fast.kernel_rank, 0);  // the fast solver ran
-  for (const double distance : fast_against_exact(5000, {agreement_settings(), with_coarse_points(1000)}))
+  for (const double distance : fast_against_exact(5000, {agreement_settings(), with_coarse_points(2500)}))
     EXPECT_LT(distance, 0.005);
 }
 

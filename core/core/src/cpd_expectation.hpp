@@ -75,7 +75,7 @@ struct EmControl {
   /// The starting variance; 0 = the classic all-pairs value (initial_sigma2). A start that is already close
   /// (the refinement after a space fit) gives its own residual variance instead.
   double initial_sigma2 = 0.0;
-  /// SQUAREM steps between pairs of EM steps (docs/cpd.md); the fast paths set it, the exact ones do not.
+  /// SQUAREM steps between pairs of EM steps (docs/cpd.md): rigid and affine fast paths set it.
   bool accelerate = false;
   int iteration_offset = 0;  ///< added to the iteration numbers reported (a second stage continues the count)
 };
