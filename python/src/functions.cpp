@@ -3,6 +3,7 @@
 #include <pybind11/eigen.h>
 #include <pybind11/stl.h>
 #include <pybind11/stl/filesystem.h>
+#include <optional>
 
 #include "arrays.hpp"
 #include "bindings.hpp"
@@ -188,6 +189,7 @@ py::object run_cpd(const core::Points& source, const core::Points& target, const
                    const py::kwargs& keywords) {
   core::NonrigidCpdSettings s;
   bool scale = false, exact = false;
+  std::optional<int> coarse_points;  // unset: each mode's default
   for (const auto& [key, value] : keywords) {
     const std::string name = py::str(key);
     if (name == "beta")
@@ -204,9 +206,11 @@ py::object run_cpd(const core::Points& source, const core::Points& target, const
       scale = value.cast<bool>();
     else if (name == "exact")
       exact = value.cast<bool>();
+    else if (name == "coarse_points")
+      coarse_points = value.cast<int>();
     else
       throw UsageError("unknown cpd setting '" + name +
-                       "'; known: beta lambda_ w tolerance max_iterations scale exact");
+                       "'; known: beta lambda_ w tolerance max_iterations scale exact coarse_points");
   }
   py::gil_scoped_release release;
   if (mode == "rigid") {
@@ -215,6 +219,7 @@ py::object run_cpd(const core::Points& source, const core::Points& target, const
     settings.tolerance = s.tolerance;
     settings.max_iterations = s.max_iterations;
     settings.estimate_scale = scale;
+    settings.coarse_points = coarse_points.value_or(settings.coarse_points);
     auto result = std::make_shared<core::RigidCpdResult>(core::register_rigid(source, target, settings));
     py::gil_scoped_acquire acquire;
     return py::cast(result);
@@ -224,12 +229,14 @@ py::object run_cpd(const core::Points& source, const core::Points& target, const
     settings.outlier_weight = s.outlier_weight;
     settings.tolerance = s.tolerance;
     settings.max_iterations = s.max_iterations;
+    settings.coarse_points = coarse_points.value_or(settings.coarse_points);
     auto result = std::make_shared<core::AffineCpdResult>(core::register_affine(source, target, settings));
     py::gil_scoped_acquire acquire;
     return py::cast(result);
   }
   if (mode != "nonrigid") throw UsageError("mode must be rigid, affine or nonrigid, not '" + mode + "'");
   if (exact) s.solver = core::NonrigidCpdSettings::Solver::exact;
+  s.coarse_points = coarse_points.value_or(s.coarse_points);
   auto result = std::make_shared<core::NonrigidCpdResult>(core::register_nonrigid(source, target, s));
   py::gil_scoped_acquire acquire;
   return py::cast(result);
@@ -244,7 +251,8 @@ void bind_cpd(py::module_& m) {
       py::arg("source"), py::arg("target"), py::arg("mode") = "nonrigid",
       "Coherent Point Drift of source (M, 3) onto target (N, 3), as `partreg cpd`: mode rigid | affine | "
       "nonrigid; settings beta=2 (normalised length: target diagonal 1), lambda_=2, w=0.1 (outlier weight), "
-      "tolerance=1e-5, max_iterations=150, scale=False (rigid), exact=False (nonrigid exact solver).");
+      "tolerance=1e-5, max_iterations=150, scale=False (rigid), exact=False (nonrigid exact solver), "
+      "coarse_points (fast path's first subsets: rigid and affine 1000, nonrigid 4000; 0 = none).");
 }
 
 void bind_evaluation(py::module_& m) {

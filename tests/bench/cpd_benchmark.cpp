@@ -1,11 +1,17 @@
 // CPD speed on real drills (../shared/data/drills): non-rigid at 500-20000 points, rigid at 1000 and 5000.
 // Run: ./build/tests/bench/cpd_benchmark --benchmark_repetitions=5 --benchmark_report_aggregates_only=true
-// The 100,000-point case is manual (about 30 CPU seconds a run, one run):
+// The 100,000-point case is manual (about 1 CPU second a run, one run):
 //   PARTREG_BENCH_100K=1 ./build/tests/bench/cpd_benchmark --benchmark_filter=100000
+// PARTREG_BENCH_EXACT=1 runs the exact E-step instead (the fit's reference; minutes from 20,000 points), and
+// PARTREG_BENCH_TRACE=1 prints every EM iteration's time and sigma2. The CPU column is the process's (both
+// E-step threads), the time column wall time.
 #include <benchmark/benchmark.h>
 #include <sys/resource.h>
 
+#include <chrono>
+#include <cstdio>
 #include <cstdlib>
+#include <memory>
 #include <random>
 
 #include "partreg/core/cpd.hpp"
@@ -52,6 +58,25 @@ Points drill_at(const std::string& name, int count) {
   return out;
 }
 
+// PARTREG_BENCH_EXACT=1: the exact E-step (every pair, plain EM on all points), the reference for the fit.
+bool exact_e_step() {
+  const char* exact = std::getenv("PARTREG_BENCH_EXACT");
+  return exact && std::string(exact) == "1";
+}
+
+// PARTREG_BENCH_TRACE=1: one line per EM iteration on stderr (milliseconds since the last, the EM line).
+partreg::core::ProgressListener trace_listener() {
+  const char* trace = std::getenv("PARTREG_BENCH_TRACE");
+  if (!trace || std::string(trace) != "1") return {};
+  auto last = std::make_shared<std::chrono::steady_clock::time_point>(std::chrono::steady_clock::now());
+  return [last](const partreg::core::Progress& p) {
+    const auto now = std::chrono::steady_clock::now();
+    std::fprintf(stderr, "%8.2f ms  %s\n", std::chrono::duration<double, std::milli>(now - *last).count(),
+                 p.line.c_str());
+    *last = now;
+  };
+}
+
 double peak_rss_mb() {
   rusage usage{};
   getrusage(RUSAGE_SELF, &usage);
@@ -78,6 +103,8 @@ void BM_NonrigidCpdDrills(benchmark::State& state) {
   const int count = static_cast<int>(state.range(0));
   const Points source = drill_at("drill_1.pcd", count), target = drill_at("drill_4.pcd", count);
   partreg::core::NonrigidCpdSettings settings;  // beta = 2, lambda = 2 (normalised units)
+  settings.progress = trace_listener();
+  settings.exact_e_step = exact_e_step();
   int iterations = 0;
   double fit = 0.0;
   for (auto _ : state) {
@@ -97,6 +124,7 @@ BENCHMARK(BM_NonrigidCpdDrills)
     ->Arg(5000)
     ->Arg(20000)
     ->Unit(benchmark::kMillisecond)
+    ->MeasureProcessCPUTime()
     ->UseRealTime();
 
 void BM_RigidCpdDrills(benchmark::State& state) {
@@ -110,7 +138,10 @@ void BM_RigidCpdDrills(benchmark::State& state) {
   int iterations = 0;
   double fit = 0.0;
   for (auto _ : state) {
-    const auto result = partreg::core::register_rigid(source, target, {});
+    partreg::core::RigidCpdSettings settings;
+    settings.progress = trace_listener();
+    settings.exact_e_step = exact_e_step();
+    const auto result = partreg::core::register_rigid(source, target, settings);
     iterations = result.iterations;
     fit = fit_of_diagonal(result.moved, target);
     benchmark::DoNotOptimize(result.moved.data());
@@ -119,7 +150,12 @@ void BM_RigidCpdDrills(benchmark::State& state) {
   state.counters["fit_of_diagonal"] = fit;
   state.counters["peak_rss_MB"] = peak_rss_mb();
 }
-BENCHMARK(BM_RigidCpdDrills)->Arg(1000)->Arg(5000)->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK(BM_RigidCpdDrills)
+    ->Arg(1000)
+    ->Arg(5000)
+    ->Unit(benchmark::kMillisecond)
+    ->MeasureProcessCPUTime()
+    ->UseRealTime();
 
 }  // namespace
 
@@ -130,6 +166,7 @@ int main(int argc, char** argv) {
         ->Arg(100000)
         ->Iterations(1)
         ->Unit(benchmark::kMillisecond)
+        ->MeasureProcessCPUTime()
         ->UseRealTime();
   benchmark::Initialize(&argc, argv);
   if (benchmark::ReportUnrecognizedArguments(argc, argv)) return 1;

@@ -59,6 +59,7 @@ TEST_F(Cli, BadInputGetsOneLineAndTheRightExitCodeAndNoOutput) {
       {"cpd " + path("nan.xyz") + " " + mesh + out, 1},
       {"cpd " + path("flat.obj") + " " + mesh + out, 1},
       {"cpd " + mesh + " " + mesh + " --beta -1" + out, 2},
+      {"cpd " + mesh + " " + mesh + " --mode rigid --coarse-points 10" + out, 2},
       {"cpd " + path("nan.xyz") + " " + mesh + " --points 50" + out, 1},
       {"cpd " + path("few.xyz") + " " + mesh + " --points 50" + out, 1},
       {"cpd " + mesh + " " + mesh + " --mode bent" + out, 2},

@@ -163,6 +163,8 @@ def test_cpd_equals_the_command_line(partreg, data_dir, cli_dir):
         partreg.cpd(source, target, mode="elastic")
     with pytest.raises(partreg.UsageError, match="unknown cpd setting 'betta'"):
         partreg.cpd(source, target, betta=1.0)
+    with pytest.raises(partreg.UsageError, match="coarse stage needs 0"):
+        partreg.cpd(source, target, coarse_points=10)
 
 
 def test_read_cloud_and_mesh(partreg, data_dir, observed_mug):

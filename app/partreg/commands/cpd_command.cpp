@@ -2,6 +2,7 @@
 #include <fstream>
 #include <iostream>
 #include <memory>
+#include <optional>
 #include <nlohmann/json.hpp>
 
 #include "partreg/commands/commands.hpp"
@@ -31,6 +32,7 @@ struct CpdOptions {
   bool scale = false;
   bool exact = false;
   bool exact_points = false;  ///< --points given: clouds are brought to that many points too
+  std::optional<int> coarse_points;  ///< --coarse-points; unset: each mode's default
 };
 
 nlohmann::json common_json(const CpdOptions& options, double sigma2, int iterations,
@@ -64,6 +66,7 @@ Registered run_mode(const CpdOptions& options, const core::Points& source, const
     settings.tolerance = s.tolerance;
     settings.max_iterations = s.max_iterations;
     settings.estimate_scale = options.scale;
+    settings.coarse_points = options.coarse_points.value_or(settings.coarse_points);
     settings.progress = progress;
     const auto result = core::register_rigid(source, target, settings);
     auto report = common_json(options, result.sigma2, result.iterations, result.stop_reason, result.seconds);
@@ -76,6 +79,7 @@ Registered run_mode(const CpdOptions& options, const core::Points& source, const
     settings.outlier_weight = s.outlier_weight;
     settings.tolerance = s.tolerance;
     settings.max_iterations = s.max_iterations;
+    settings.coarse_points = options.coarse_points.value_or(settings.coarse_points);
     settings.progress = progress;
     const auto result = core::register_affine(source, target, settings);
     auto report = common_json(options, result.sigma2, result.iterations, result.stop_reason, result.seconds);
@@ -87,6 +91,7 @@ Registered run_mode(const CpdOptions& options, const core::Points& source, const
   }
   core::NonrigidCpdSettings settings = s;
   if (options.exact) settings.solver = core::NonrigidCpdSettings::Solver::exact;
+  settings.coarse_points = options.coarse_points.value_or(settings.coarse_points);
   settings.progress = progress;
   const auto result = core::register_nonrigid(source, target, settings);
   auto report = common_json(options, result.sigma2, result.iterations, result.stop_reason, result.seconds);
@@ -156,6 +161,10 @@ void add_cpd_command(CLI::App& app) {
   command->add_option("--max-iterations", options->nonrigid.max_iterations, "iteration cap")
       ->capture_default_str()
       ->check(CLI::Range(1, 1000000));
+  command->add_option("--coarse-points", options->coarse_points,
+                      "fast path: EM first settles on random subsets of this many points of each set, "
+                      "then polishes on all (default: rigid and affine 1000, nonrigid 4000; 0 = never, "
+                      "else >= 50)");
   command->add_flag("--scale", options->scale, "rigid mode: estimate a uniform scale too");
   command->add_flag("--exact", options->exact,
                     "nonrigid mode: the exact solver (full kernel, no truncation)");

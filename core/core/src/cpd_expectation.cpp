@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <numeric>
+#include <random>
 #include <unordered_map>
 
 #include "partreg/core/errors.hpp"
@@ -309,6 +311,22 @@ double initial_sigma2(const Points& source, const Points& target) {
   return total / (3.0 * m * n);
 }
 
+std::vector<int> random_rows(Eigen::Index count, Eigen::Index wanted) {
+  std::vector<int> rows(static_cast<std::size_t>(count));
+  std::iota(rows.begin(), rows.end(), 0);
+  if (wanted >= count) return rows;
+  // A partial Fisher-Yates shuffle: the first `wanted` places end up a uniform sample without replacement.
+  // The modulo's bias is below count / 2^64.
+  std::mt19937_64 generator(20101);
+  for (Eigen::Index i = 0; i < wanted; ++i) {
+    const auto j = i + static_cast<Eigen::Index>(generator() % static_cast<std::uint64_t>(count - i));
+    std::swap(rows[static_cast<std::size_t>(i)], rows[static_cast<std::size_t>(j)]);
+  }
+  rows.resize(static_cast<std::size_t>(wanted));
+  std::sort(rows.begin(), rows.end());  // the input's order: neighbours in memory stay near
+  return rows;
+}
+
 void check_cpd_points(const Points& points, const char* name) {
   if (points.rows() < 3)
     throw InputError(std::string("CPD needs at least 3 ") + name + " points, got " +
@@ -344,12 +362,55 @@ namespace {
 
 void report_iteration(const EmControl& control, int iteration, double sigma2, double change) {
   std::ostringstream line;
-  line << "iteration " << iteration << ": sigma2 " << sigma2 << ", relative change " << change;
-  const auto cap = static_cast<std::size_t>(control.max_iterations);
-  control.progress(Progress{static_cast<std::size_t>(iteration), cap, line.str(), /*bounded=*/true});
+  const int number = control.iteration_offset + iteration;
+  line << "iteration " << number << ": sigma2 " << sigma2 << ", relative change " << change;
+  const auto cap = static_cast<std::size_t>(control.iteration_offset + control.max_iterations);
+  control.progress(Progress{static_cast<std::size_t>(number), cap, line.str(), /*bounded=*/true});
 }
 
 }  // namespace
+
+// SQUAREM (Varadhan & Roland 2008, scheme S3) over the moved points. On the drills EM creeps: rigid CPD
+// turns by about 1e-3 rad an iteration for 30 iterations, each step a little shorter than the last. Every
+// two plain steps from theta0 (to theta1, theta2) this jumps to theta0 - 2 a r + a^2 v, r = theta1 - theta0,
+// v = theta2 - 2 theta1 + theta0, a = -|r| / |v| (at most kMaxJump steps' worth); run_em keeps the jump only
+// if the likelihood there is no worse than at theta1, else it goes on from theta2. sigma2 is not
+// extrapolated: it is EM's annealing, and jumping it ahead (tried) let non-rigid fits skip the gradual
+// shrinking that picks their basin (training's held-out mug: hol+part registration error 0.049 of the
+// diagonal instead of 0.008).
+class Squarem {
+ public:
+  static constexpr double kMaxJump = 4.0;
+  void begin(const Points& moved) {
+    start_ = moved;
+    steps_ = 0;
+  }
+  /// After a plain step to `moved` with `sigma2`: true when it moved them to a jump (fallback() holds the
+  /// plain step).
+  bool after_step(Points& moved, double sigma2) {
+    if (++steps_ == 1) {
+      first_ = moved;
+      return false;
+    }
+    const Points r = first_ - start_, v = moved - first_ - r;
+    const double a = -std::min(kMaxJump, std::sqrt(r.squaredNorm() / std::max(v.squaredNorm(), 1e-300)));
+    if (!(a < -1.0)) {  // no longer than the plain steps
+      begin(moved);
+      return false;
+    }
+    fallback_ = moved;
+    fallback_sigma2_ = sigma2;
+    moved = start_ - 2.0 * a * r + a * a * v;
+    return true;
+  }
+  const Points& fallback() const { return fallback_; }
+  double fallback_sigma2() const { return fallback_sigma2_; }
+
+ private:
+  Points start_, first_, fallback_;
+  double fallback_sigma2_ = 0.0;
+  int steps_ = 0;
+};
 
 EmOutcome run_em(const Points& target, Points& moved, const EmControl& control,
                  const std::function<double(const Expectation&, double sigma2)>& m_step) {
@@ -360,9 +421,20 @@ EmOutcome run_em(const Points& target, Points& moved, const EmControl& control,
     return outcome;
   }
   double previous = std::numeric_limits<double>::infinity(), previous_edge = -1.0;
+  Squarem squarem;
+  squarem.begin(moved);
+  bool jumped = false;
+  int settled = 0;  // consecutive changes under the tolerance
   for (int iteration = 1; iteration <= control.max_iterations; ++iteration) {
-    const Expectation e = expectation(moved, target, sigma2, control.e_step);
+    Expectation e = expectation(moved, target, sigma2, control.e_step);
     outcome.iterations = iteration;
+    if (jumped && e.cell_edge == previous_edge && e.negative_log_likelihood > previous) {
+      moved = squarem.fallback();  // the jump made the fit worse: on from the plain step
+      sigma2 = squarem.fallback_sigma2();
+      if (++iteration > control.max_iterations) break;
+      e = expectation(moved, target, sigma2, control.e_step);
+      outcome.iterations = iteration;
+    }
     if (!(e.Np > 1e-12)) {  // every target point explained as an outlier: nothing left to fit
       outcome.stop_reason = CpdStopReason::degenerate;
       break;
@@ -382,13 +454,53 @@ EmOutcome run_em(const Points& target, Points& moved, const EmControl& control,
       outcome.stop_reason = CpdStopReason::converged;
       break;
     }
-    if (change < control.tolerance) {
+    // Accelerated, a single small change can be the step after a short jump: two in a row are asked for.
+    settled = change < control.tolerance ? settled + 1 : 0;
+    if (settled >= (control.accelerate ? 2 : 1)) {
       outcome.stop_reason = CpdStopReason::converged;
       break;
     }
+    if (control.accelerate) {
+      if (jumped) {
+        squarem.begin(moved);  // the step after a jump starts the next pair
+        jumped = false;
+      } else {
+        jumped = squarem.after_step(moved, sigma2);
+      }
+    }
+  }
+  if (jumped) {  // stopped by the cap after a jump: end on the last step, which the M-step's result matches
+    moved = squarem.fallback();
+    sigma2 = squarem.fallback_sigma2();
   }
   outcome.sigma2 = sigma2;
   return outcome;
+}
+
+// The full sets' stage after coarse ones starts close: a few iterations polish what the subsets found.
+constexpr int kFineIterations = 10;
+
+std::vector<CoarseStage> coarse_stages(Eigen::Index sources, Eigen::Index targets, int coarse_points,
+                                       bool exact_e_step) {
+  std::vector<CoarseStage> stages;
+  const Eigen::Index larger = std::max(sources, targets);
+  if (exact_e_step || coarse_points <= 0) return stages;
+  for (Eigen::Index size = coarse_points; 2 * size <= larger; size *= 8)
+    stages.push_back({random_rows(sources, size), random_rows(targets, size)});
+  return stages;
+}
+
+EmControl next_stage_control(EmControl control, const EmOutcome& previous, bool last) {
+  control.initial_sigma2 = previous.sigma2;
+  control.iteration_offset += previous.iterations;
+  if (last) control.max_iterations = std::min(control.max_iterations, kFineIterations);
+  return control;
+}
+
+void check_coarse_points(int coarse_points) {
+  if (coarse_points != 0 && coarse_points < 50)
+    throw UsageError("the CPD coarse stage needs 0 (none) or at least 50 points, got " +
+                     std::to_string(coarse_points));
 }
 
 std::int64_t now_nanoseconds() {

@@ -22,7 +22,8 @@ struct EStepSettings {
   int threads = 0;              ///< 0 = all cores
   /// Every source-target pair in double precision: the reference the fast path is tested against.
   bool exact = false;
-  /// Fast path: kernel values below this are skipped (a KD-tree radius search of sqrt(2 ln(1/t)) sigma).
+  /// Fast path: kernel values below this are skipped (a radius of sqrt(2 ln(1/t)) sigma). CPD's settings
+  /// set it (1e-4); this default serves the registration's refinement, which leaves it as it was.
   double truncation = 1e-8;
   /// Fast path: points sharing a voxel cell of this edge, in units of sigma, are merged into one weighted
   /// point at their centroid (on both sides). The kernel then changes by O(edge^2 / 12) relatively, and the
@@ -38,6 +39,11 @@ Expectation expectation(const Points& moved, const Points& target, double sigma2
 
 /// The classic initial variance: mean squared distance over all source-target pairs, divided by 3.
 double initial_sigma2(const Points& source, const Points& target);
+
+/// `wanted` of the rows 0 .. count - 1, drawn at random without replacement (a fixed seed: the same rows in
+/// every run and process), in increasing order; every row when count <= wanted. A random subset keeps the
+/// density of the set, so EM's objective over it is an unbiased estimate of the objective over all points.
+std::vector<int> random_rows(Eigen::Index count, Eigen::Index wanted);
 
 /// Validates a point set for CPD, naming it in the message ("source", "target").
 void check_cpd_points(const Points& points, const char* name);
@@ -69,6 +75,9 @@ struct EmControl {
   /// The starting variance; 0 = the classic all-pairs value (initial_sigma2). A start that is already close
   /// (the refinement after a space fit) gives its own residual variance instead.
   double initial_sigma2 = 0.0;
+  /// SQUAREM steps between pairs of EM steps (docs/cpd.md): rigid and affine fast paths set it.
+  bool accelerate = false;
+  int iteration_offset = 0;  ///< added to the iteration numbers reported (a second stage continues the count)
 };
 
 struct EmOutcome {
@@ -81,6 +90,24 @@ struct EmOutcome {
 /// until the negative log-likelihood settles, sigma2 collapses, or the cap is hit.
 EmOutcome run_em(const Points& target, Points& moved, const EmControl& control,
                  const std::function<double(const Expectation&, double sigma2)>& m_step);
+
+/// Coarse-to-fine EM (docs/cpd.md): the rows of the source and target one coarse stage runs on.
+struct CoarseStage {
+  std::vector<int> source, target;
+};
+
+/// The coarse stages before the full sets, smallest first: random subsets of coarse_points, 8 times as
+/// many, ... while a stage holds at most half of the larger set (so none for sets under twice
+/// coarse_points), and none with the exact E-step or coarse_points 0. Each stage's rows include the last's.
+std::vector<CoarseStage> coarse_stages(Eigen::Index sources, Eigen::Index targets, int coarse_points,
+                                       bool exact_e_step);
+
+/// The control of the stage after one that ended with `previous`: it starts from that variance and
+/// continues the iteration count; the full sets' stage (`last`) runs at most kFineIterations.
+EmControl next_stage_control(EmControl control, const EmOutcome& previous, bool last);
+
+/// Validates the coarse stage's size (0 = none, else at least 50 points).
+void check_coarse_points(int coarse_points);
 
 /// The seconds elapsed since `start` (a steady_clock time point in nanoseconds since its epoch).
 double seconds_since(std::int64_t start_nanoseconds);

@@ -38,12 +38,22 @@ LowRankKernel low_rank_kernel(const Points& source, double beta, int kernel_rank
   return kernel;
 }
 
+// The fast M-step for source rows `source` with kernel factor rows U: with G = U U^T only Z = U^T W moves
+// the points, (lambda sigma2 I + U^T d(P1) U) Z = U^T (P X - d(P1) Y) (Woodbury, solved for Z). It stays well
+// conditioned as sigma2 shrinks, unlike W itself. Returns Z (k x 3); the points move to source + U Z.
+Eigen::MatrixXd low_rank_m_step(const detail::Expectation& e, const Eigen::MatrixXd& U, const Points& source,
+                                double regulariser) {
+  Eigen::MatrixXd system = U.transpose() * e.P1.asDiagonal() * U;
+  system.diagonal().array() += regulariser;
+  return system.ldlt().solve(U.transpose() * (e.PX - e.P1.asDiagonal() * source));
+}
 
 void check_settings(const NonrigidCpdSettings& s) {
   if (!(s.beta > 0.0)) throw UsageError("CPD beta must be positive, got " + std::to_string(s.beta));
   if (!(s.lambda > 0.0)) throw UsageError("CPD lambda must be positive, got " + std::to_string(s.lambda));
   if (s.kernel_rank < 0) throw UsageError("the kernel rank must be 0 (automatic) or positive");
   detail::check_fast_e_step(s.truncation, s.cell_size);
+  detail::check_coarse_points(s.coarse_points);
   detail::check_cpd_common(s.outlier_weight, s.tolerance, s.max_iterations);
 }
 
@@ -96,28 +106,50 @@ NonrigidCpdResult register_nonrigid(const Points& source_in, const Points& targe
   control.e_step.outlier_weight = settings.outlier_weight;
   control.e_step.threads = settings.threads;
   control.e_step.exact = !fast || settings.exact_e_step;
+  // No SQUAREM here (docs/cpd.md): jumps of the field changed which fit training's CPDs settled on, and the
+  // registration tests on the held-out mug moved with them.
+  control.accelerate = false;
   control.e_step.truncation = settings.truncation;
   control.e_step.cell_size = settings.cell_size;
   control.tolerance = settings.tolerance;
   control.max_iterations = settings.max_iterations;
   control.progress = settings.progress;
+  // Coarse to fine: each stage starts from the field the one before found (Z: the same landmarks serve
+  // every stage). The data term sums over the target, the regulariser does not: lambda scaled by the
+  // stage's share of the target gives a subset the full problem's balance.
+  int iterations = 0;
+  const auto stages =
+      fast ? detail::coarse_stages(m, target.rows(), settings.coarse_points, settings.exact_e_step)
+           : std::vector<detail::CoarseStage>{};
+  for (const detail::CoarseStage& rows : stages) {
+    const Points stage_source = select_rows(source, rows.source),
+                 stage_target = select_rows(target, rows.target);
+    const Eigen::MatrixXd stage_factor = low_rank.factor(rows.source, Eigen::all);
+    const double stage_lambda =
+        settings.lambda * static_cast<double>(rows.target.size()) / static_cast<double>(target.rows());
+    Points stage_moved = latent.size() > 0 ? Points(stage_source + stage_factor * latent) : stage_source;
+    const auto outcome =
+        detail::run_em(stage_target, stage_moved, control, [&](const detail::Expectation& e, double sigma2) {
+          latent = low_rank_m_step(e, stage_factor, stage_source, stage_lambda * sigma2);
+          stage_moved = stage_source + stage_factor * latent;
+          return detail::nonrigid_variance(e, stage_target, stage_moved);
+        });
+    if (outcome.stop_reason == CpdStopReason::degenerate) break;  // the full sets go on from the last field
+    control = detail::next_stage_control(control, outcome, &rows == &stages.back());
+    iterations += outcome.iterations;
+  }
+  if (latent.size() > 0) moved = source + low_rank.factor * latent;
   const auto outcome =
       detail::run_em(target, moved, control, [&](const detail::Expectation& e, double sigma2) {
         const double regulariser = settings.lambda * sigma2;
-        const Points rhs =
-            e.PX - e.P1.asDiagonal() * source;  // (G + lambda sigma2 d(P1)^-1) W = d(P1)^-1 PX - Y
         if (fast) {
-          // With G = U U^T only Z = U^T W moves the points: (lambda sigma2 I + U^T d(P1) U) Z = U^T rhs
-          // (Woodbury, solved for Z). It stays well conditioned as sigma2 shrinks, unlike W itself.
-          const Eigen::MatrixXd& U = low_rank.factor;
-          Eigen::MatrixXd system = U.transpose() * e.P1.asDiagonal() * U;
-          system.diagonal().array() += regulariser;
-          latent = system.ldlt().solve(U.transpose() * rhs);
-          moved = source + U * latent;
+          latent = low_rank_m_step(e, low_rank.factor, source, regulariser);
+          moved = source + low_rank.factor * latent;
         } else {
+          // (G + lambda sigma2 d(P1)^-1) W = d(P1)^-1 PX - Y
           Eigen::MatrixXd system = e.P1.asDiagonal() * kernel;
           system.diagonal().array() += regulariser;
-          weights = system.partialPivLu().solve(rhs);
+          weights = system.partialPivLu().solve(e.PX - e.P1.asDiagonal() * source);
           moved = source + kernel * weights;
         }
         return detail::nonrigid_variance(e, target, moved);
@@ -134,7 +166,7 @@ NonrigidCpdResult register_nonrigid(const Points& source_in, const Points& targe
   result.source = source_in;
   result.moved = result.normalization.undo(source + field_at(source, source, weights, settings.beta));
   result.sigma2 = outcome.sigma2;
-  result.iterations = outcome.iterations;
+  result.iterations = iterations + outcome.iterations;
   result.stop_reason = outcome.stop_reason;
   result.kernel_rank = fast ? static_cast<int>(low_rank.factor.cols()) : 0;
   result.seconds = detail::seconds_since(start);

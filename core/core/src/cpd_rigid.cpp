@@ -4,6 +4,7 @@
 #include "cpd_expectation.hpp"
 #include "partreg/core/cpd.hpp"
 #include "partreg/core/errors.hpp"
+#include "partreg/core/sampling.hpp"
 
 namespace partreg::core {
 namespace {
@@ -36,6 +37,7 @@ detail::EmControl control_of(const Settings& settings) {
   control.e_step.outlier_weight = settings.outlier_weight;
   control.e_step.threads = settings.threads;
   control.e_step.exact = settings.exact_e_step;
+  control.accelerate = !control.e_step.exact;
   control.e_step.truncation = settings.truncation;
   control.e_step.cell_size = settings.cell_size;
   control.tolerance = settings.tolerance;
@@ -49,8 +51,18 @@ Normalization working_frame(const Points& target, bool normalize) {
   return normalize ? Normalization::fit(target) : Normalization{};
 }
 
+Points moved_by(const RigidCpdResult& r, const Points& source) {
+  return (r.scale * source * r.rotation.transpose()).rowwise() + r.translation.transpose();
+}
+
+Points moved_by(const AffineCpdResult& r, const Points& source) {
+  return (source * r.linear.transpose()).rowwise() + r.translation.transpose();
+}
+
 // Shared by rigid and affine CPD: validate, move both sets into the working frame, run EM with `m_step`
-// (which updates `moved` and returns sigma2), and fill the result's common fields in the caller's frame.
+// (which sets the result's transform from the E-step's sums and returns sigma2), and fill the result's
+// common fields in the caller's frame. Seven or twelve numbers are carried by a few hundred points, so EM
+// first settles on a random subset (coarse_points) and then polishes on every point (docs/cpd.md).
 // Returns the working frame so the caller can map its transform back.
 template <typename Settings, typename Result, typename MStep>
 Normalization run_linear_cpd(const Points& source_in, const Points& target_in, const Settings& settings,
@@ -60,15 +72,37 @@ Normalization run_linear_cpd(const Points& source_in, const Points& target_in, c
   detail::check_cpd_points(target_in, "target");
   detail::check_cpd_common(settings.outlier_weight, settings.tolerance, settings.max_iterations);
   detail::check_fast_e_step(settings.truncation, settings.cell_size);
+  detail::check_coarse_points(settings.coarse_points);
   const Normalization frame = working_frame(target_in, settings.normalize);
   const Points source = frame.apply(source_in), target = frame.apply(target_in);
-  Points moved = source;
-  const auto outcome = detail::run_em(
-      target, moved, control_of(settings),
-      [&](const detail::Expectation& e, double) { return m_step(e, source, target, moved); });
+  const auto stage = [&](const Points& stage_source, const Points& stage_target, Points& moved,
+                         const detail::EmControl& control) {
+    return detail::run_em(stage_target, moved, control, [&](const detail::Expectation& e, double) {
+      const double sigma2 = m_step(e, stage_source, stage_target, result);
+      moved = moved_by(result, stage_source);
+      return sigma2;
+    });
+  };
+  // Coarse to fine: each stage starts from the transform the one before found.
+  detail::EmControl control = control_of(settings);
+  int iterations = 0;
+  bool started = false;
+  const auto stages =
+      detail::coarse_stages(source.rows(), target.rows(), settings.coarse_points, settings.exact_e_step);
+  for (const detail::CoarseStage& rows : stages) {
+    const Points stage_source = select_rows(source, rows.source);
+    Points stage_moved = started ? moved_by(result, stage_source) : stage_source;
+    const auto outcome = stage(stage_source, select_rows(target, rows.target), stage_moved, control);
+    if (outcome.stop_reason == CpdStopReason::degenerate) break;  // the full sets start afresh
+    control = detail::next_stage_control(control, outcome, &rows == &stages.back());
+    iterations += outcome.iterations;
+    started = true;
+  }
+  Points moved = started ? moved_by(result, source) : source;
+  const auto outcome = stage(source, target, moved, control);
   result.moved = frame.undo(moved);
   result.sigma2 = outcome.sigma2;
-  result.iterations = outcome.iterations;
+  result.iterations = iterations + outcome.iterations;
   result.stop_reason = outcome.stop_reason;
   result.seconds = detail::seconds_since(start);
   return frame;
@@ -100,18 +134,15 @@ RigidCpdResult register_rigid(const Points& source_in, const Points& target_in,
   RigidCpdResult result;
   const Normalization frame = run_linear_cpd(
       source_in, target_in, settings, result,
-      [&](const detail::Expectation& e, const Points& source, const Points& target, Points& moved) {
+      [&](const detail::Expectation& e, const Points& source, const Points& target, RigidCpdResult& r) {
         const Moments m = moments(e, source, target);
         const Eigen::JacobiSVD<Eigen::Matrix3d> svd(m.cross, Eigen::ComputeFullU | Eigen::ComputeFullV);
         Eigen::Vector3d reflection_guard(1.0, 1.0, (svd.matrixU() * svd.matrixV().transpose()).determinant());
-        result.rotation = svd.matrixU() * reflection_guard.asDiagonal() * svd.matrixV().transpose();
-        const double trace = (m.cross.transpose() * result.rotation).trace();
-        result.scale = settings.estimate_scale ? trace / m.source_spread : 1.0;
-        result.translation = m.mu_target - result.scale * result.rotation * m.mu_source;
-        moved = ((result.scale * source * result.rotation.transpose()).rowwise() +
-                 result.translation.transpose());
-        const double explained =
-            settings.estimate_scale ? result.scale * trace : 2.0 * trace - m.source_spread;
+        r.rotation = svd.matrixU() * reflection_guard.asDiagonal() * svd.matrixV().transpose();
+        const double trace = (m.cross.transpose() * r.rotation).trace();
+        r.scale = settings.estimate_scale ? trace / m.source_spread : 1.0;
+        r.translation = m.mu_target - r.scale * r.rotation * m.mu_source;
+        const double explained = settings.estimate_scale ? r.scale * trace : 2.0 * trace - m.source_spread;
         return std::abs(m.target_spread - explained) / (3.0 * e.Np);
       });
   // Back to the caller's frame: x = k x' + c with x' = s R y' + t' and y' = (y - c) / k.
@@ -125,12 +156,11 @@ AffineCpdResult register_affine(const Points& source_in, const Points& target_in
   AffineCpdResult result;
   const Normalization frame = run_linear_cpd(
       source_in, target_in, settings, result,
-      [&](const detail::Expectation& e, const Points& source, const Points& target, Points& moved) {
+      [&](const detail::Expectation& e, const Points& source, const Points& target, AffineCpdResult& r) {
         const Moments m = moments(e, source, target);
-        result.linear = m.cross * m.source_outer.inverse();
-        result.translation = m.mu_target - result.linear * m.mu_source;
-        moved = (source * result.linear.transpose()).rowwise() + result.translation.transpose();
-        return std::abs(m.target_spread - (m.cross * result.linear.transpose()).trace()) / (3.0 * e.Np);
+        r.linear = m.cross * m.source_outer.inverse();
+        r.translation = m.mu_target - r.linear * m.mu_source;
+        return std::abs(m.target_spread - (m.cross * r.linear.transpose()).trace()) / (3.0 * e.Np);
       });
   result.translation = frame.scale * result.translation + frame.centre - result.linear * frame.centre;
   return result;

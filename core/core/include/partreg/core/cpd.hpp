@@ -30,8 +30,12 @@ struct RigidCpdSettings {
   bool normalize = true;     ///< register in the target's normalised frame (see file comment)
   int threads = 0;           ///< E-step threads; 0 = all cores
   bool exact_e_step = false;  ///< E-step over every pair (the reference); else the fast one (docs/cpd.md)
-  double truncation = 1e-8;   ///< fast E-step: kernel values below this are skipped (as non-rigid)
+  double truncation = 1e-4;   ///< fast E-step: kernel values below this are skipped (as non-rigid)
   double cell_size = 0.5;     ///< fast E-step: voxel cell edge in units of sigma (as non-rigid)
+  /// Fast E-step: EM first settles on random subsets of this many source and target points (and 8 times
+  /// as many, while that is at most half the larger set), then polishes on all of them (at most 10
+  /// iterations, docs/cpd.md). No coarse stage when the larger set has fewer than twice this; 0 = never.
+  int coarse_points = 1000;
   /// Called after every EM iteration: done = iterations so far, total = max_iterations (bounded: EM usually
   /// converges before), line = sigma2 and the relative change (core/progress.hpp).
   ProgressListener progress;
@@ -59,8 +63,9 @@ struct AffineCpdSettings {
   bool normalize = true;        ///< register in the target's normalised frame
   int threads = 0;              ///< E-step threads; 0 = all cores
   bool exact_e_step = false;    ///< E-step over every pair (the reference); else the fast one
-  double truncation = 1e-8;     ///< fast E-step: kernel values below this are skipped (as non-rigid)
+  double truncation = 1e-4;     ///< fast E-step: kernel values below this are skipped (as non-rigid)
   double cell_size = 0.5;       ///< fast E-step: voxel cell edge in units of sigma (as non-rigid)
+  int coarse_points = 1000;     ///< fast E-step: the first coarse stage's size (as rigid); 0 = none
   /// Called after every EM iteration: done = iterations so far, total = max_iterations (bounded: EM usually
   /// converges before), line = sigma2 and the relative change (core/progress.hpp).
   ProgressListener progress;
@@ -91,14 +96,21 @@ struct NonrigidCpdSettings {
   bool normalize = true;        ///< register in the target's normalised frame
   Solver solver = Solver::automatic;
   int kernel_rank = 0;  ///< eigenpairs of G kept by the fast solver; 0 = chosen from the spectrum
-  /// Fast E-step: kernel values below this are skipped (a radius of sqrt(2 ln(1/truncation)) sigma).
-  double truncation = 1e-8;
+  /// Fast E-step: kernel values below this are skipped (a radius of sqrt(2 ln(1/truncation)) sigma: 4.29
+  /// sigma; on a surface the mass left out is about this share of each target point's, docs/cpd.md).
+  double truncation = 1e-4;
   /// Fast E-step: points sharing a voxel cell of this edge (in units of sigma) act as one weighted point at
   /// their centroid, so the work while sigma is large follows the cells, not the points. 0 = never merged.
   double cell_size = 0.25;
   /// The exact E-step (every pair, double precision) even with the fast solver's low-rank kernel: the
   /// reference the fast E-step is tested against at sizes where the exact solver's M x M solve is too slow.
   bool exact_e_step = false;
+  /// Fast solver: EM first settles on random subsets of this many source and target points (and 8 times
+  /// as many, while that is at most half the larger set; lambda scaled by the subset's share of the
+  /// target), then polishes on all of them from the subsets' field, which the low-rank kernel carries to
+  /// every point (at most 10 iterations, docs/cpd.md). No coarse stage when the larger set has fewer than
+  /// twice this; 0 = never.
+  int coarse_points = 4000;
   int threads = 0;  ///< E-step threads; 0 = all cores
   /// Called after every EM iteration: done = iterations so far, total = max_iterations (bounded: EM usually
   /// converges before), line = sigma2 and the relative change (core/progress.hpp).
