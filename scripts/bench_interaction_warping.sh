@@ -17,6 +17,7 @@
 #
 # Usage: scripts/bench_interaction_warping.sh --peer DIR --cycpd DIR --trimesh DIR [--work DIR]
 #            [--partreg BIN] [--python-module DIR] [--folds "CATEGORY:HELD,OUT ..."] [--jobs N]
+#            [--peer-threads N]
 #
 # Protocol. Each fold holds out instances of a category folder of ../shared/data (default: two folds of two
 # mugs, one of two bowls: 4 mugs and 2 bowls); both methods train on the rest with their defaults
@@ -29,13 +30,13 @@
 # deformed mesh (partreg's canonical mesh, the peer's canonical mesh) sampled to 4000 points, symmetric RMS
 # against the truth sampled as `register --truth` does (scripts/score_deformed_meshes.py); partreg's own
 # figure on its M canonical points is listed too. CPU: user + system seconds, one thread each (partreg: the
-# whole `register --threads 1` process without --truth; the peer, OMP_NUM_THREADS=1: the process CPU time of
-# its inference, without the Python start-up). The peer's trainings, then its inferences (full views first)
+# whole `register --threads 1` process without --truth; the peer, OMP_NUM_THREADS=1 unless --peer-threads:
+# the process CPU time of its inference, all threads, without the Python start-up). The peer's trainings, then its inferences (full views first)
 # run --jobs at a time (default 2). Outputs already in WORK are reused, so a stopped run resumes.
 # The tables go to WORK/table.md.
 set -euo pipefail
 python=/usr/bin/python3  # Debian's, where python3-torch is
-peer_src= cycpd_src= trimesh_src= work=${TMPDIR:-/tmp}/partreg_iw partreg=./build/partreg module=./build/python jobs=2
+peer_src= cycpd_src= trimesh_src= work=${TMPDIR:-/tmp}/partreg_iw partreg=./build/partreg module=./build/python jobs=2 peer_threads=1
 folds="mugs:1a97f3c83016abca21d0de04f408950f,1c9f9e25c654cbca3c71bf3f4dd78475
 mugs:1eaf8db2dd2b710c7d5b1b70ae595e60,3d1754b7cb46c0ce5c8081810641ef6
 bowls:1b4d7803a3298f8477bdcb8816a3fac9,1fbb9f70d081630e638b4be15b07b442"
@@ -44,11 +45,13 @@ while [ $# -gt 0 ]; do
   case $1 in
     --peer) peer_src=$2 ;; --cycpd) cycpd_src=$2 ;; --trimesh) trimesh_src=$2 ;; --work) work=$2 ;;
     --partreg) partreg=$2 ;; --python-module) module=$2 ;; --folds) folds=$2 ;; --jobs) jobs=$2 ;;
+    --peer-threads) peer_threads=$2 ;;
     *) echo "usage: see the header of $0" >&2; exit 2 ;;
   esac
   shift 2
 done
-[[ $jobs =~ ^[1-9][0-9]*$ ]] || { echo "$0: --jobs is a positive count" >&2; exit 2; }
+[[ $jobs =~ ^[1-9][0-9]*$ && $peer_threads =~ ^[1-9][0-9]*$ ]] ||
+  { echo "$0: --jobs and --peer-threads are positive counts" >&2; exit 2; }
 here=$(cd "$(dirname "$0")/.." && pwd)
 data=${PARTREG_DATA_DIR:-$here/../shared/data}
 for d in "$peer_src/shapewarping" "$cycpd_src/cycpd" "$trimesh_src/trimesh"; do
@@ -142,7 +145,7 @@ peer_train() {  # ID
   mv "$work/peer_$1.pkl.tmp" "$work/peer_$1.pkl"
 }
 peer_infer() {  # VIEW ID STEM
-  PYTHONPATH=$peer_path OMP_NUM_THREADS=1 "$python" "$here/scripts/interaction_warping_peer.py" infer \
+  PYTHONPATH=$peer_path OMP_NUM_THREADS=$peer_threads "$python" "$here/scripts/interaction_warping_peer.py" infer \
     "$work/peer_$2.pkl" "$work/train_$2" "$3.ply" "$3.peer.ply" "$3.peer_json.tmp" 2>"$3.peer.log"
   mv "$3.peer_json.tmp" "$3.peer.json"
 }
