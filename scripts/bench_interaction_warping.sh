@@ -31,12 +31,13 @@
 # against the truth sampled as `register --truth` does (scripts/score_deformed_meshes.py); partreg's own
 # figure on its M canonical points is listed too. CPU: user + system seconds, one thread each (partreg: the
 # whole `register --threads 1` process without --truth; the peer, OMP_NUM_THREADS=1 unless --peer-threads:
-# the process CPU time of its inference, all threads, without the Python start-up). The peer's trainings, then its inferences (full views first)
+# the process CPU time of its inference, all threads, without the Python start-up; its trainings run with
+# its default threads). The peer's trainings, then its inferences (full views first)
 # run --jobs at a time (default 2). Outputs already in WORK are reused, so a stopped run resumes.
 # The tables go to WORK/table.md.
 set -euo pipefail
 python=/usr/bin/python3  # Debian's, where python3-torch is
-peer_src= cycpd_src= trimesh_src= work=${TMPDIR:-/tmp}/partreg_iw partreg=./build/partreg module=./build/python jobs=2 peer_threads=1
+peer_src='' cycpd_src='' trimesh_src='' work=${TMPDIR:-/tmp}/partreg_iw partreg=./build/partreg module=./build/python jobs=2 peer_threads=1
 folds="mugs:1a97f3c83016abca21d0de04f408950f,1c9f9e25c654cbca3c71bf3f4dd78475
 mugs:1eaf8db2dd2b710c7d5b1b70ae595e60,3d1754b7cb46c0ce5c8081810641ef6
 bowls:1b4d7803a3298f8477bdcb8816a3fac9,1fbb9f70d081630e638b4be15b07b442"
@@ -91,7 +92,6 @@ peer_path=$work/peer:$(realpath "$trimesh_src"):$work/deps/cycpd:$work/deps/shim
 # --- partreg and the observations, per fold (cheap) ---
 results=$work/rows.txt
 : > "$results"
-cpu_of() { awk '{printf "%.2f", $1 + $2}' "$1"; }
 peer_trainings=() peer_inferences=()
 for fold in $folds; do
   category=${fold%%:*} held=${fold#*:}
