@@ -253,10 +253,10 @@ SearchOutcome search_poses(const ShapeSpace& space, const Points& normals, const
       static_cast<Eigen::Index>(candidates.size()),
       [&](Eigen::Index begin, Eigen::Index end) {
         for (auto i = static_cast<std::size_t>(begin); i < static_cast<std::size_t>(end); ++i) {
-          // Steps on the coarse problem do not count against the whole problem's budget, nor does
-          // settling there mean settling here.
-          const int used = coarse ? 0 : candidates[i].iterations;
-          const int left = settings.convergence.outer_iterations - used;
+          // Steps on the coarse problem do not count against the whole problem's budget (nor in the
+          // iterations reported: their history stays), nor does settling there mean settling here.
+          if (coarse) candidates[i].iterations = 0;
+          const int left = settings.convergence.outer_iterations - candidates[i].iterations;
           if (left > 0 && (coarse || !candidates[i].converged))
             advance(candidates[i], left, space, normals, observation, settings);
           scores[i] = selection_score(space, normals, observation, candidates[i], settings);
