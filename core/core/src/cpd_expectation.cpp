@@ -497,6 +497,19 @@ EmControl next_stage_control(EmControl control, const EmOutcome& previous, bool 
   return control;
 }
 
+EmControl run_coarse_stages(const std::vector<CoarseStage>& stages, EmControl control,
+                            const std::function<EmOutcome(const CoarseStage&, const EmControl&)>& stage,
+                            int& iterations) {
+  iterations = 0;
+  for (const CoarseStage& rows : stages) {
+    const EmOutcome outcome = stage(rows, control);
+    if (outcome.stop_reason == CpdStopReason::degenerate) break;
+    control = next_stage_control(control, outcome, &rows == &stages.back());
+    iterations += outcome.iterations;
+  }
+  return control;
+}
+
 void check_coarse_points(int coarse_points) {
   if (coarse_points != 0 && coarse_points < 50)
     throw UsageError("the CPD coarse stage needs 0 (none) or at least 50 points, got " +

@@ -106,6 +106,14 @@ std::vector<CoarseStage> coarse_stages(Eigen::Index sources, Eigen::Index target
 /// continues the iteration count; the full sets' stage (`last`) runs at most kFineIterations.
 EmControl next_stage_control(EmControl control, const EmOutcome& previous, bool last);
 
+/// Runs the coarse stages in turn, smallest first: `stage(rows, control)` runs EM on one, starting from the
+/// last one's result, and returns its outcome. Each next stage's control continues the last's
+/// (next_stage_control); a degenerate stage ends them, and the full sets go on from the last good result.
+/// Returns the control for the full sets; `iterations` gets the iterations of the stages that completed.
+EmControl run_coarse_stages(const std::vector<CoarseStage>& stages, EmControl control,
+                            const std::function<EmOutcome(const CoarseStage&, const EmControl&)>& stage,
+                            int& iterations);
+
 /// Validates the coarse stage's size (0 = none, else at least 50 points).
 void check_coarse_points(int coarse_points);
 

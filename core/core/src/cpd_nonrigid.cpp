@@ -118,26 +118,25 @@ NonrigidCpdResult register_nonrigid(const Points& source_in, const Points& targe
   // every stage). The data term sums over the target, the regulariser does not: lambda scaled by the
   // stage's share of the target gives a subset the full problem's balance.
   int iterations = 0;
-  const auto stages =
+  control = detail::run_coarse_stages(
       fast ? detail::coarse_stages(m, target.rows(), settings.coarse_points, settings.exact_e_step)
-           : std::vector<detail::CoarseStage>{};
-  for (const detail::CoarseStage& rows : stages) {
-    const Points stage_source = select_rows(source, rows.source),
-                 stage_target = select_rows(target, rows.target);
-    const Eigen::MatrixXd stage_factor = low_rank.factor(rows.source, Eigen::all);
-    const double stage_lambda =
-        settings.lambda * static_cast<double>(rows.target.size()) / static_cast<double>(target.rows());
-    Points stage_moved = latent.size() > 0 ? Points(stage_source + stage_factor * latent) : stage_source;
-    const auto outcome =
-        detail::run_em(stage_target, stage_moved, control, [&](const detail::Expectation& e, double sigma2) {
-          latent = low_rank_m_step(e, stage_factor, stage_source, stage_lambda * sigma2);
-          stage_moved = stage_source + stage_factor * latent;
-          return detail::nonrigid_variance(e, stage_target, stage_moved);
-        });
-    if (outcome.stop_reason == CpdStopReason::degenerate) break;  // the full sets go on from the last field
-    control = detail::next_stage_control(control, outcome, &rows == &stages.back());
-    iterations += outcome.iterations;
-  }
+           : std::vector<detail::CoarseStage>{},
+      control,
+      [&](const detail::CoarseStage& rows, const detail::EmControl& stage_control) {
+        const Points stage_source = select_rows(source, rows.source),
+                     stage_target = select_rows(target, rows.target);
+        const Eigen::MatrixXd stage_factor = low_rank.factor(rows.source, Eigen::all);
+        const double stage_lambda =
+            settings.lambda * static_cast<double>(rows.target.size()) / static_cast<double>(target.rows());
+        Points stage_moved = latent.size() > 0 ? Points(stage_source + stage_factor * latent) : stage_source;
+        return detail::run_em(
+            stage_target, stage_moved, stage_control, [&](const detail::Expectation& e, double sigma2) {
+              latent = low_rank_m_step(e, stage_factor, stage_source, stage_lambda * sigma2);
+              stage_moved = stage_source + stage_factor * latent;
+              return detail::nonrigid_variance(e, stage_target, stage_moved);
+            });
+      },
+      iterations);
   if (latent.size() > 0) moved = source + low_rank.factor * latent;
   const auto outcome =
       detail::run_em(target, moved, control, [&](const detail::Expectation& e, double sigma2) {

@@ -84,20 +84,20 @@ Normalization run_linear_cpd(const Points& source_in, const Points& target_in, c
     });
   };
   // Coarse to fine: each stage starts from the transform the one before found.
-  detail::EmControl control = control_of(settings);
   int iterations = 0;
-  bool started = false;
-  const auto stages =
-      detail::coarse_stages(source.rows(), target.rows(), settings.coarse_points, settings.exact_e_step);
-  for (const detail::CoarseStage& rows : stages) {
-    const Points stage_source = select_rows(source, rows.source);
-    Points stage_moved = started ? moved_by(result, stage_source) : stage_source;
-    const auto outcome = stage(stage_source, select_rows(target, rows.target), stage_moved, control);
-    if (outcome.stop_reason == CpdStopReason::degenerate) break;  // the full sets start afresh
-    control = detail::next_stage_control(control, outcome, &rows == &stages.back());
-    iterations += outcome.iterations;
-    started = true;
-  }
+  bool started = false;  // a stage completed: the next starts from its transform
+  const detail::EmControl control = detail::run_coarse_stages(
+      detail::coarse_stages(source.rows(), target.rows(), settings.coarse_points, settings.exact_e_step),
+      control_of(settings),
+      [&](const detail::CoarseStage& rows, const detail::EmControl& stage_control) {
+        const Points stage_source = select_rows(source, rows.source);
+        Points stage_moved = started ? moved_by(result, stage_source) : stage_source;
+        const auto outcome =
+            stage(stage_source, select_rows(target, rows.target), stage_moved, stage_control);
+        started = started || outcome.stop_reason != CpdStopReason::degenerate;
+        return outcome;
+      },
+      iterations);
   Points moved = started ? moved_by(result, source) : source;
   const auto outcome = stage(source, target, moved, control);
   result.moved = frame.undo(moved);

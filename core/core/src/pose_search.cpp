@@ -129,14 +129,8 @@ std::optional<CoarseProblem> coarse_problem(const ShapeSpace& space, const Point
   const auto count = static_cast<std::size_t>(points);
   if (points <= 0 || (space.canonical.rows() <= points && observation.points.rows() <= points))
     return std::nullopt;
-  const auto rows_of = [&](const Points& set) {
-    std::vector<int> rows(static_cast<std::size_t>(set.rows()));
-    if (set.rows() <= points)
-      std::iota(rows.begin(), rows.end(), 0);
-    else
-      rows = farthest_point_indices(set, count);
-    return rows;
-  };
+  // Every row of a set no larger than `points` (sampling.hpp), else its farthest points.
+  const auto rows_of = [&](const Points& set) { return subsample_indices(set, count, /*voxel_size=*/0.0); };
   CoarseProblem coarse;
   const std::vector<int> canonical_rows = rows_of(space.canonical);
   coarse.space = restricted_space(space, canonical_rows);
