@@ -150,6 +150,14 @@ TEST_F(Cli, RegisterWritesItsOutputsAndRefusesBadInput) {
             baselines.at("rigid-canonical").at("symmetric_rms_per_diagonal").get<double>() + 1e-12)
       << "the oracle's templates include the canonical";
 
+  // Issue 14: the search says how many hypotheses it tried (12 yaws x 9 tilts by default) and how clear the
+  // winner was, in the JSON and on the command line.
+  const nlohmann::json& holistic = report.at("spaces").at(0);
+  EXPECT_EQ(holistic.at("pose_hypotheses").get<int>(), 108);
+  EXPECT_GT(holistic.at("selection_score").get<double>(), 0.0);
+  EXPECT_GE(holistic.at("runner_up_score").get<double>(), holistic.at("selection_score").get<double>());
+  EXPECT_NE(good.output.find("pose: best of 108 hypotheses"), std::string::npos) << good.output;
+
   // What the refinement (on by default) did; off, it says so and nothing more.
   const nlohmann::json& refinement = report.at("refinement");
   EXPECT_TRUE(refinement.at("enabled").get<bool>());

@@ -1,5 +1,6 @@
 // `partreg register MODEL OBSERVED`: deform a category model onto an observed cloud or mesh.
 #include <algorithm>
+#include <cmath>
 #include <iostream>
 #include <memory>
 #include <sstream>
@@ -129,9 +130,18 @@ void run_register(const RegisterOptions& options) {
   const core::RegistrationResult result =
       core::register_observation(model, observed, options.settings, progress.listener());
   progress.finish();
-  for (const core::SpaceFit& fit : result.fits)
+  for (const core::SpaceFit& fit : result.fits) {
     std::cerr << "space " << fit.space << ": " << fit.iterations << " steps ("
               << core::enum_name(fit.stop_reason) << "), cost " << fit.cost << ", " << fit.seconds << " s\n";
+    // A runner-up scoring close to the winner says the pose is ambiguous (docs/registration.md).
+    if (fit.hypotheses > 1)
+      std::cerr << "  pose: best of " << fit.hypotheses << " hypotheses, score " << fit.score
+                << (std::isfinite(fit.runner_up_score)
+                        ? "; runner-up " + std::to_string(fit.runner_up_score) + " (" +
+                              std::to_string(fit.runner_up_score / fit.score) + "x)"
+                        : std::string("; no runner-up"))
+                << "\n";
+  }
   std::cerr << core::enum_name(result.variant) << ": mean closest-point distance " << result.fit.mean
             << " (data units), " << result.fit.mean_normalised << " of the model's diagonal; 90th percentile "
             << result.fit.p90 << "; " << result.seconds << " s\n";

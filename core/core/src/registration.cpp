@@ -71,6 +71,9 @@ void record(RegistrationResult& result, const std::string& name, const detail::S
                solution.iterations,
                stop,
                solution.seconds};
+  fit.hypotheses = search.hypotheses;
+  fit.score = search.best_score;
+  fit.runner_up_score = search.runner_up;
   result.fits.push_back(fit);
   for (std::size_t i = 0; i < solution.steps.size(); ++i)
     result.history.push_back({name, solution.steps[i].first,
