@@ -121,6 +121,48 @@ TEST(EvalReport, BaselineTableShowsTheMeansAndRatiosOfTheRowsAndLeavesTheEq5Tabl
   EXPECT_NE(tables.find("Registrations: 3 (and 8 baseline rows"), std::string::npos) << tables;
 }
 
+TEST(EvalReport, SeamGapsRoundTripAndShowForThePartVariantsOnly) {
+  // hol+part: two full views with mean gaps 1% and 3% (largest 2% and 6%): the table shows 2.00 / 4.00.
+  std::vector<eval::EvalRow> rows = {row("holistic", -1, eval::Perturbation::none, -1, 4e-4),
+                                     row("hol+part", -1, eval::Perturbation::none, -1, 3e-4),
+                                     row("hol+part", -1, eval::Perturbation::none, -1, 3e-4),
+                                     row("hol+part", 2, eval::Perturbation::none, -1, 3e-4),
+                                     row("hol+part", -1, eval::Perturbation::noise, 0, 3e-4)};
+  rows[1].seam = core::SeamGap{0.02, 0.01, 40};
+  rows[2].seam = core::SeamGap{0.06, 0.03, 40};
+  rows[3].seam = core::SeamGap{0.5, 0.25, 40};
+  rows[4].seam = core::SeamGap{0.9, 0.9, 40};  // perturbed: not in the clean table
+  testing::TempDir dir;
+  eval::write_rows_csv(dir / "r.csv", rows);
+  const std::vector<eval::EvalRow> back = eval::read_rows_csv(dir / "r.csv");
+  ASSERT_EQ(back.size(), rows.size());
+  EXPECT_FALSE(back[0].seam);
+  ASSERT_TRUE(back[2].seam);
+  EXPECT_DOUBLE_EQ(back[2].seam->mean, 0.03);
+  EXPECT_DOUBLE_EQ(back[2].seam->max, 0.06);
+  const std::string tables = eval::markdown_report(back);
+  const auto full = tables.find(
+      "Seam gap (core::seam_gap), mean / largest over the boundary points, % of the "
+      "model's diagonal, full views\n\n| category | hol+part |\n|---|---|\n"
+      "| mugs | 2.00 / 4.00 |");
+  EXPECT_NE(full, std::string::npos) << tables;
+  EXPECT_NE(tables.find("| mugs | 25.00 / 50.00 |"), std::string::npos) << tables;  // the partial view
+
+  // A format 2 file (before the seam columns) still reads, with no seam.
+  std::ifstream in(dir / "r.csv");
+  std::string format, header, line;
+  std::getline(in, format), std::getline(in, header), std::getline(in, line);
+  std::ofstream old(dir / "old.csv");
+  old << "# partreg evaluation rows, format 2\n"
+      << header.substr(0, header.rfind(",seam_gap_mean")) << "\n"
+      << line.substr(0, line.size() - 2) << "\n";  // holistic's row ends in its two empty seam fields
+  old.close();
+  const std::vector<eval::EvalRow> older = eval::read_rows_csv(dir / "old.csv");
+  ASSERT_EQ(older.size(), 1u);
+  EXPECT_FALSE(older[0].seam);
+  EXPECT_DOUBLE_EQ(older[0].errors.eq5_per_diagonal2, 4e-4);
+}
+
 TEST(EvalReport, ACsvFromElsewhereIsRefusedWithItsName) {
   testing::TempDir dir;
   std::ofstream(dir / "other.csv") << "a,b,c\n1,2,3\n";

@@ -147,6 +147,13 @@ void run_register(const RegisterOptions& options) {
             << result.fit.p90 << "; " << result.seconds << " s\n";
   nlohmann::json report =
       io::result_json(result, options.settings, {options.model_path, options.observed_path});
+  if (result.variant != core::Variant::holistic) {
+    // Whether the parts stay together: neighbouring parts' positions of the same boundary points.
+    const core::SeamGap gap = core::seam_gap(model, result);
+    std::cerr << "seam gap: mean " << gap.mean << ", largest " << gap.max << " of the model's diagonal over "
+              << gap.points << " boundary points\n";
+    report["seam_gap"] = {{"mean_normalised", gap.mean}, {"max_normalised", gap.max}, {"points", gap.points}};
+  }
   if (!options.truth_path.empty()) report["truth"] = truth_errors(model, observed, result, options);
   write_outputs(model, result, frames, options);
   write_json_or_stdout(report, options.json_path);

@@ -223,6 +223,11 @@ std::vector<RegistrationOption> make_options() {
       whole(
           "refine-iterations", "refinement EM iterations at most", 1, 1000,
           [](auto& s) -> auto& { return s.refinement.iterations; }),
+      real(
+          "refine-noise-limit",
+          "the refinement stands down when the observation's median distance off the fitted surface is above "
+          "this (normalised length)",
+          1e-4, 10.0, [](auto& s) -> auto& { return s.refinement.noise_limit; }),
   };
 }
 

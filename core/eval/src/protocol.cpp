@@ -191,7 +191,8 @@ void run_job(const EvalInput& input, const EvalSettings& settings, const FoldCon
                    test.diagonal,
                    static_cast<int>(perturbed.points.rows()),
                    errors,
-                   seconds};
+                   seconds,
+                   std::nullopt};
   };
   std::vector<core::RegistrationResult> results;
   for (std::size_t v = 0; v < variants.size(); ++v) {
@@ -202,6 +203,7 @@ void run_job(const EvalInput& input, const EvalSettings& settings, const FoldCon
                  core::measure_against_truth(results[v].deformed, results[v].part, model.part_names, truth,
                                              test.diagonal, truth_of_row ? &*truth_of_row : nullptr),
                  results[v].seconds);
+    if (variants[v] != core::Variant::holistic) rows[v].seam = core::seam_gap(model, results[v]);
   }
   if (!settings.baselines) return;
   BaselineObservation seen{&perturbed.points, &truth, test.diagonal, truth_of_row ? &*truth_of_row : nullptr,

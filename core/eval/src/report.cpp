@@ -17,14 +17,18 @@ namespace partreg::eval {
 namespace {
 
 // The first line names the layout's version (raised when a column changes meaning); the second the columns.
-const char* const kFormatLine = "# partreg evaluation rows, format 2";
-const char* const kHeader =
-    "category,instance,canonical,fold,variant,view,direction_x,direction_y,direction_z,perturbation,"
-    "level_index,paper_level,level,diagonal,observed_points,eq5,eq5_per_diagonal2,reverse_eq5,"
-    "symmetric_rms_per_diagonal,chamfer,chamfer_per_diagonal,correspondence_per_diagonal,part_eq5_per_"
-    "diagonal2,"
-    "seconds";
-constexpr std::size_t kColumns = 24;
+// Format 3 added the two seam-gap columns at the end; format 2 files (without them) are still read.
+const char* const kFormatLine = "# partreg evaluation rows, format 3";
+const char* const kFormat2Line = "# partreg evaluation rows, format 2";
+#define PARTREG_FORMAT_2_COLUMNS                                                                      \
+  "category,instance,canonical,fold,variant,view,direction_x,direction_y,direction_z,perturbation,"   \
+  "level_index,paper_level,level,diagonal,observed_points,eq5,eq5_per_diagonal2,reverse_eq5,"         \
+  "symmetric_rms_per_diagonal,chamfer,chamfer_per_diagonal,correspondence_per_diagonal,part_eq5_per_" \
+  "diagonal2,seconds"
+const char* const kFormat2Header = PARTREG_FORMAT_2_COLUMNS;
+const char* const kHeader = PARTREG_FORMAT_2_COLUMNS ",seam_gap_mean,seam_gap_max";
+#undef PARTREG_FORMAT_2_COLUMNS
+constexpr std::size_t kFormat2Columns = 24, kColumns = 26;
 
 // Part errors in one CSV field: "body=1.2e-05;handle=3.4e-05".
 std::string parts_field(const std::map<std::string, double>& parts) {
@@ -68,6 +72,11 @@ EvalRow parse_row(const std::vector<std::string>& f) {
   if (!f[21].empty()) row.errors.correspondence_per_diagonal = std::stod(f[21]);
   row.errors.part_eq5_per_diagonal2 = parse_parts(f[22]);
   row.seconds = std::stod(f[23]);
+  if (f.size() > kFormat2Columns && !f[24].empty()) {
+    row.seam = core::SeamGap{};
+    row.seam->mean = std::stod(f[24]);
+    row.seam->max = std::stod(f[25]);
+  }
   return row;
 }
 
@@ -164,7 +173,12 @@ void write_rows_csv(const std::filesystem::path& path, const std::vector<EvalRow
         << r.errors.symmetric_rms_per_diagonal << ',' << r.errors.chamfer << ','
         << r.errors.chamfer_per_diagonal << ',';
     if (r.errors.correspondence_per_diagonal) out << *r.errors.correspondence_per_diagonal;
-    out << ',' << parts_field(r.errors.part_eq5_per_diagonal2) << ',' << r.seconds << '\n';
+    out << ',' << parts_field(r.errors.part_eq5_per_diagonal2) << ',' << r.seconds << ',';
+    if (r.seam)
+      out << r.seam->mean << ',' << r.seam->max;
+    else
+      out << ',';
+    out << '\n';
   }
   if (!out.flush()) throw InputError("cannot write " + path.string());
 }
@@ -175,18 +189,20 @@ std::vector<EvalRow> read_rows_csv(const std::filesystem::path& path) {
   std::string line;
   if (!std::getline(in, line) || line.rfind("# partreg evaluation rows", 0) != 0)
     throw InputError(path.string() + " is not a partreg evaluation CSV (its first line names no format)");
-  if (line != kFormatLine)
+  const bool format2 = line == kFormat2Line;
+  if (line != kFormatLine && !format2)
     throw InputError(path.string() + " has another format (" + line.substr(2) + "; this partreg reads " +
-                     std::string(kFormatLine).substr(2) + "): run the evaluation again");
-  if (!std::getline(in, line) || line != kHeader)
+                     std::string(kFormatLine).substr(2) + " and format 2): run the evaluation again");
+  if (!std::getline(in, line) || line != (format2 ? kFormat2Header : kHeader))
     throw InputError(path.string() + " is not a partreg evaluation CSV (header differs)");
+  const std::size_t columns = format2 ? kFormat2Columns : kColumns;
   std::vector<EvalRow> rows;
   for (int number = 3; std::getline(in, line); ++number) {
     if (line.empty()) continue;
     const std::vector<std::string> fields = split(line);
     try {
-      if (fields.size() != kColumns)
-        throw std::invalid_argument("expected " + std::to_string(kColumns) + " fields");
+      if (fields.size() != columns)
+        throw std::invalid_argument("expected " + std::to_string(columns) + " fields");
       rows.push_back(parse_row(fields));
     } catch (const std::exception& e) {
       throw InputError(path.string() + ":" + std::to_string(number) + ": malformed row (" + e.what() + ")");
@@ -272,6 +288,36 @@ void part_tables(std::ostringstream& out, const std::vector<EvalRow>& rows) {
         }
         out << "\n";
       }
+    }
+  }
+}
+
+// The seam gap of the part variants on clean observations: the mean gap over boundary points, then the
+// largest, each averaged over the rows (% of the model's diagonal). Nothing when no row has a seam.
+void seam_tables(std::ostringstream& out, const std::vector<EvalRow>& rows) {
+  std::vector<std::string> variants;
+  for (const std::string& variant : variants_of(rows))
+    if (std::any_of(rows.begin(), rows.end(),
+                    [&](const EvalRow& r) { return r.variant == variant && r.seam; }))
+      variants.push_back(variant);
+  if (variants.empty()) return;
+  for (bool partial : {false, true}) {
+    out << "\nSeam gap (core::seam_gap), mean / largest over the boundary points, % of the model's diagonal, "
+        << (partial ? "partial views" : "full views") << "\n\n";
+    header_row(out, "category", variants);
+    for (const std::string& category : categories_of(rows)) {
+      out << "| " << category << " |";
+      const auto keep = [&](const std::string& variant) {
+        return [&, variant](const EvalRow& r) {
+          return r.category == category && r.variant == variant && is_partial(r) == partial && r.seam &&
+                 r.perturbation == Perturbation::none;
+        };
+      };
+      for (const std::string& variant : variants)
+        out << ' ' << cell(mean_of(rows, keep(variant), [](const EvalRow& r) { return r.seam->mean; }), 100)
+            << " / " << cell(mean_of(rows, keep(variant), [](const EvalRow& r) { return r.seam->max; }), 100)
+            << " |";
+      out << "\n";
     }
   }
 }
@@ -391,6 +437,7 @@ std::string markdown_report(const std::vector<EvalRow>& rows) {
                    100, 2);
   }
   part_tables(out, rows);
+  seam_tables(out, rows);
   sweep_tables(out, rows);
   timing_table(out, rows);
   return out.str();

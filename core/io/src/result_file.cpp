@@ -28,6 +28,8 @@ nlohmann::json refinement_json(const core::RefinementField& field, const core::R
           {"applied", !field.empty()},
           {"points", field.points},
           {"observed", field.observed},
+          {"matched", field.matched},
+          {"median_residual_normalised", field.median_residual},
           {"centres", field.centres.rows()},
           {"iterations", field.iterations},
           {"seconds", field.seconds},

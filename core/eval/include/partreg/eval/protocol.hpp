@@ -8,9 +8,11 @@
 
 #include <functional>
 #include <map>
+#include <optional>
 #include <string>
 #include <vector>
 
+#include "partreg/core/deformation.hpp"
 #include "partreg/core/registration.hpp"
 #include "partreg/core/training.hpp"
 #include "partreg/core/truth_errors.hpp"
@@ -81,6 +83,9 @@ struct EvalRow {
   int observed_points = 0;
   core::TruthErrors errors;
   double seconds = 0.0;  ///< registration time (a baseline's: its alignment and scoring)
+  /// Part variants only: how far apart neighbouring parts put the same boundary points (core::seam_gap,
+  /// mean and largest, fractions of the model's diagonal); empty for holistic and the baselines.
+  std::optional<core::SeamGap> seam;
 };
 
 /// Progress (core/progress.hpp): rows done, rows planned, and a line worth logging (empty when there is
