@@ -202,8 +202,8 @@ void bind_registration_result(py::module_& m) {
       .def_readonly("observed", &core::RefinementField::observed, "of those, the ones counted as observed")
       .def_readonly("matched", &core::RefinementField::matched,
                     "observed points within two gates of the fit (the rest are strays, left out)")
-      .def_readonly("median_residual", &core::RefinementField::median_residual,
-                    "median distance from the observed points to the fit, / the model's diagonal")
+      .def_readonly("thickness", &core::RefinementField::thickness,
+                    "how thick the observed surface is (median spread off local planes), / the diagonal")
       .def_readonly("iterations", &core::RefinementField::iterations, "EM iterations run")
       .def_readonly("seconds", &core::RefinementField::seconds)
       .def_readonly("mean_movement", &core::RefinementField::mean_movement,

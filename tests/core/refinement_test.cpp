@@ -192,18 +192,18 @@ TEST(Refinement, StandsDownOnACloudTooNoisyForDetail) {
   RegistrationSettings forced = refined(true);
   forced.refinement.noise_limit = 10.0;  // never stands down
   const RegistrationResult chased = register_observation(setup().model, observed, forced);
-  std::cout << "noisy cloud: median residual " << fine.refinement.median_residual << " (limit "
+  std::cout << "noisy cloud: thickness " << fine.refinement.thickness << " (limit "
             << forced.refinement.noise_limit << " forced), symmetric RMS space fit " << symmetric_rms(space)
             << ", refined anyway " << symmetric_rms(chased) << "\n";
-  EXPECT_GT(fine.refinement.median_residual, RefinementSettings{}.noise_limit);
+  EXPECT_GT(fine.refinement.thickness, RefinementSettings{}.noise_limit);
   EXPECT_TRUE(fine.refinement.empty());
   EXPECT_DOUBLE_EQ(symmetric_rms(fine), symmetric_rms(space));
   // Refined anyway, the field follows the noise: the stand-down is what keeps this error away.
   EXPECT_GT(symmetric_rms(chased), 1.1 * symmetric_rms(space));
   // The clean full view is well inside the limit, and is refined.
   const RegistrationResult clean = register_observation(setup().model, setup().truth, refined(true));
-  std::cout << "clean median residual " << clean.refinement.median_residual << "\n";
-  EXPECT_LT(clean.refinement.median_residual, 0.75 * RefinementSettings{}.noise_limit);
+  std::cout << "clean thickness " << clean.refinement.thickness << "\n";
+  EXPECT_LT(clean.refinement.thickness, 0.75 * RefinementSettings{}.noise_limit);
   EXPECT_FALSE(clean.refinement.empty());
 }
 

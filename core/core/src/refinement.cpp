@@ -3,6 +3,7 @@
 #include "partreg/core/refinement.hpp"
 
 #include <Eigen/Dense>
+#include <Eigen/Eigenvalues>
 #include <Eigen/Sparse>
 #include <chrono>
 #include <cmath>
@@ -64,18 +65,31 @@ std::vector<int> observed_rows(const Points& fitted, const KdTree& observed_tree
   return rows;
 }
 
-// The median distance of the `near` observed points off the fitted surface: along the normal of their nearest
-// seen fitted point, so that the canonical points' own spacing (about 0.02 at M = 1000) does not count.
-double median_off_surface(const Points& fitted_seen, const Points& observed, const std::vector<int>& near,
-                          const std::vector<int>& nearest) {
-  const Points normals = detail::outward_normals(fitted_seen, 0.05);
-  std::vector<double> off;
-  for (const int n : near) {
-    const auto m = static_cast<Eigen::Index>(nearest[static_cast<std::size_t>(n)]);
-    off.push_back(std::abs(normals.row(m).dot(observed.row(n) - fitted_seen.row(m))));
+// How thick the observed surface is, from the observation alone: the median over its points of the RMS
+// spread of their kThicknessNeighbours nearest observed points off their own best plane (the square root of
+// the smallest eigenvalue of their covariance). A sampled surface gives about its curvature's sagitta over
+// the neighbourhood, sensor noise its standard deviation. The fit plays no part, so a poor space fit (which
+// the refinement is there to mend) never looks like noise.
+constexpr int kThicknessNeighbours = 16;
+
+double surface_thickness(const Points& observed, const KdTree& tree) {
+  std::vector<double> spread;
+  spread.reserve(static_cast<std::size_t>(observed.rows()));
+  for (Eigen::Index n = 0; n < observed.rows(); ++n) {
+    const auto near = tree.nearest_k(observed.row(n).transpose(), kThicknessNeighbours);
+    Eigen::Vector3d mean = Eigen::Vector3d::Zero();
+    for (const auto& [j, d2] : near) mean += observed.row(j).transpose();
+    mean /= static_cast<double>(near.size());
+    Eigen::Matrix3d covariance = Eigen::Matrix3d::Zero();
+    for (const auto& [j, d2] : near)
+      covariance += (observed.row(j).transpose() - mean) * (observed.row(j) - mean.transpose());
+    covariance /= static_cast<double>(near.size());
+    spread.push_back(std::sqrt(std::max(0.0, Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d>(covariance,
+                                                                                        Eigen::EigenvaluesOnly)
+                                                  .eigenvalues()[0])));
   }
-  const auto middle = off.begin() + static_cast<long>(off.size() / 2);
-  std::nth_element(off.begin(), middle, off.end());
+  const auto middle = spread.begin() + static_cast<long>(spread.size() / 2);
+  std::nth_element(spread.begin(), middle, spread.end());
   return *middle;
 }
 
@@ -131,6 +145,10 @@ RefinementField refine_fit(const Points& fitted, const Points& observed,
   field.points = static_cast<int>(fitted.rows());
   field.observed = static_cast<int>(seen.size());
   if (seen.size() < 10) return field;  // nothing seen to refine towards: the space fit stands
+  // A cloud thicker than noise_limit carries no detail a fine field could follow: the space fit stands
+  // (measured: refining a synthetic mug's full view under noise of 5% of the diagonal is 22% worse).
+  field.thickness = surface_thickness(observed, observed_tree);
+  if (field.thickness > settings.noise_limit) return field;
   const Points fitted_seen = select_rows(fitted, seen);
 
   std::vector<int> nearest;
@@ -147,12 +165,6 @@ RefinementField refine_fit(const Points& fitted, const Points& observed,
     near.push_back(static_cast<int>(n));
   }
   if (near.size() < 10) return field;
-  // What the observation says about itself against the fit, strays left out: a cloud whose typical point
-  // lies farther off the fitted surface than noise_limit carries no detail a fine field could follow
-  // (measured on kettles: noise of 8% of the diagonal made full views 1.5 times worse refined than not), so
-  // the space fit stands.
-  field.median_residual = median_off_surface(fitted_seen, observed, near, nearest);
-  if (field.median_residual > settings.noise_limit) return field;
   const Points matched = select_rows(observed, near);
   field.matched = static_cast<int>(near.size());
 

@@ -225,8 +225,8 @@ std::vector<RegistrationOption> make_options() {
           [](auto& s) -> auto& { return s.refinement.iterations; }),
       real(
           "refine-noise-limit",
-          "the refinement stands down when the observation's median distance off the fitted surface is above "
-          "this (normalised length)",
+          "the refinement stands down when the observed surface is thicker than this (median spread off "
+          "local planes; normalised length)",
           1e-4, 10.0, [](auto& s) -> auto& { return s.refinement.noise_limit; }),
   };
 }

@@ -29,7 +29,7 @@ nlohmann::json refinement_json(const core::RefinementField& field, const core::R
           {"points", field.points},
           {"observed", field.observed},
           {"matched", field.matched},
-          {"median_residual_normalised", field.median_residual},
+          {"thickness_normalised", field.thickness},
           {"centres", field.centres.rows()},
           {"iterations", field.iterations},
           {"seconds", field.seconds},

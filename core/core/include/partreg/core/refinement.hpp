@@ -23,9 +23,10 @@ struct RefinementField {
   double beta = 0.0;  ///< kernel width (frame units)
   int points = 0;     ///< fitted points refined
   int observed = 0;   ///< of those, the ones treated as observed (pulled to the data)
-  /// Median distance of the observed points off the seen fitted surface, strays left out (normalised
-  /// length): above RefinementSettings::noise_limit the refinement stands down. 0 when nothing was seen.
-  double median_residual = 0.0;
+  /// How thick the observed surface is (normalised length): the median over the observed points of their
+  /// nearest neighbours' RMS spread off their best plane. Above RefinementSettings::noise_limit the
+  /// refinement stands down. 0 when nothing was seen.
+  double thickness = 0.0;
   int matched = 0;  ///< observed points within two gates of the fit, the ones the E-step matched
   int iterations = 0;  ///< EM iterations run
   double seconds = 0.0;

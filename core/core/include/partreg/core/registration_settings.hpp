@@ -118,10 +118,9 @@ struct RefinementSettings {
   double gate = 0.05;           ///< farther than this from every observed point is unobserved (normalised length)
   double outlier_weight = 0.1;  ///< CPD's w in [0, 1): share of the observation explained by uniform noise
   int iterations = 20;          ///< EM iterations at most
-  /// The refinement stands down when the observed points' median distance off the fitted surface (along its
-  /// normals, strays beyond two gates left out) is above this (normalised length): the cloud is then too
-  /// noisy for detail finer than the space's. Measured on a synthetic mug's full view: clean 0.010; with
-  /// noise of 5% of the diagonal 0.025, where refining anyway is 22% worse than the space fit.
+  /// The refinement stands down when the observed surface is thicker than this (normalised length; the
+  /// median over the observed points of their 16 nearest neighbours' RMS spread off their best plane): the
+  /// cloud is then too noisy for detail finer than the space's. Measured: docs/registration.md.
   double noise_limit = 0.02;
 };
 
