@@ -140,6 +140,8 @@ class Refinement:
     """What the fit beyond the shape space did; movements are shares of the model's diagonal."""
     points: int
     observed: int
+    matched: int
+    thickness: float
     iterations: int
     seconds: float
     mean_movement: float
