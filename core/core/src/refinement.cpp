@@ -77,13 +77,9 @@ double surface_thickness(const Points& observed, const KdTree& tree) {
   spread.reserve(static_cast<std::size_t>(observed.rows()));
   for (Eigen::Index n = 0; n < observed.rows(); ++n) {
     const auto near = tree.nearest_k(observed.row(n).transpose(), kThicknessNeighbours);
-    Eigen::Vector3d mean = Eigen::Vector3d::Zero();
-    for (const auto& [j, d2] : near) mean += observed.row(j).transpose();
-    mean /= static_cast<double>(near.size());
-    Eigen::Matrix3d covariance = Eigen::Matrix3d::Zero();
-    for (const auto& [j, d2] : near)
-      covariance += (observed.row(j).transpose() - mean) * (observed.row(j) - mean.transpose());
-    covariance /= static_cast<double>(near.size());
+    Eigen::Vector3d mean;
+    const Eigen::Matrix3d covariance =
+        detail::neighbourhood_scatter(observed, near, mean) / static_cast<double>(near.size());
     spread.push_back(std::sqrt(std::max(0.0, Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d>(covariance,
                                                                                         Eigen::EigenvaluesOnly)
                                                   .eigenvalues()[0])));
@@ -151,9 +147,9 @@ RefinementField refine_fit(const Points& fitted, const Points& observed,
   if (field.thickness > settings.noise_limit) return field;
   const Points fitted_seen = select_rows(fitted, seen);
 
-  std::vector<int> nearest;
-  Eigen::VectorXd squared;
-  KdTree(fitted_seen).nearest_all(observed, nearest, squared);
+  std::vector<int> unused_index;
+  Eigen::VectorXd squared;  // from each observed point to the nearest seen fitted point
+  KdTree(fitted_seen).nearest_all(observed, unused_index, squared);
   std::vector<int> near;
   const double stray = kStrayGates * settings.gate;
   std::vector<std::pair<int, double>> around;
