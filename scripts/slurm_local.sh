@@ -49,10 +49,19 @@ PartitionName=local Nodes=$host Default=YES MaxTime=INFINITE State=UP
 CONF
 }
 
+# Stops the daemons and waits until they are gone: slurmctld saves its state as it stops, and a caller that
+# removes DIR the moment `run` returns would otherwise race it ("Directory not empty").
 stop() {
-  local dir=$1 daemon
+  local dir=$1 daemon pid waited
   for daemon in slurmd slurmctld munged; do
-    [ -s "$dir/$daemon.pid" ] && kill "$(cat "$dir/$daemon.pid")" 2>/dev/null || true
+    [ -s "$dir/$daemon.pid" ] || continue
+    pid=$(cat "$dir/$daemon.pid")
+    kill "$pid" 2>/dev/null || continue
+    for ((waited = 0; waited < 300; waited++)); do  # 30 s, then it is killed outright
+      kill -0 "$pid" 2>/dev/null || continue 2
+      sleep 0.1
+    done
+    kill -9 "$pid" 2>/dev/null || true
   done
 }
 
