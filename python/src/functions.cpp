@@ -94,12 +94,15 @@ void bind_training(py::module_& m) {
   m.def(
       "train",
       [](const Path& folder, std::optional<Path> labels, std::optional<std::string> canonical, int latent,
-         int points, int samples, double beta, double lambda, std::uint64_t seed, int threads,
-         const std::array<double, 3>& up) {
+         int points, int samples, double beta, double lambda, double seam_band, std::uint64_t seed,
+         int threads, const std::array<double, 3>& up) {
         const core::ThreadBudget budget(thread_count(threads));
         if (latent < 1) throw UsageError("latent must be at least 1");
         if (points < 10) throw UsageError("points must be at least 10");
+        if (!(seam_band >= 0.0 && seam_band <= 1.0))
+          throw UsageError("seam_band must be between 0 and 1 (normalised length)");
         core::TrainingSettings settings;
+        settings.seam_band = seam_band;
         settings.latent_dimensions = latent;
         settings.canonical_points = points;
         settings.beta = beta;
@@ -116,10 +119,11 @@ void bind_training(py::module_& m) {
       Release(), py::arg("dataset_dir"), py::kw_only(), py::arg("labels") = py::none(),
       py::arg("canonical") = py::none(), py::arg("latent") = training.latent_dimensions,
       py::arg("points") = training.canonical_points, py::arg("samples") = dataset.points_per_instance,
-      py::arg("beta") = training.beta, py::arg("lambda_") = training.lambda, py::arg("seed") = dataset.seed,
+      py::arg("beta") = training.beta, py::arg("lambda_") = training.lambda,
+      py::arg("seam_band") = training.seam_band, py::arg("seed") = dataset.seed,
       py::arg("threads") = 0, py::arg("up") = std::array<double, 3>{0.0, 1.0, 0.0},
       "Trains a category from a folder of pose-aligned instances, as `partreg train` with the same options "
-      "(lambda_ is --lambda; up is --up, the category's up axis, kept in the model). labels: a labels file "
+      "(lambda_ is --lambda; seam_band is --seam-band; up is --up, the category's up axis, kept in the model). labels: a labels file "
       "giving the canonical its parts. beta in normalised units "
       "(canonical diagonal 1). threads: as --threads, all counted, 0 = all cores.");
 }

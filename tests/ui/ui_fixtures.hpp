@@ -15,10 +15,17 @@
 
 namespace partreg::testing {
 
-/// The folder is per model format version: a model cached by a build of another version would be refused.
+/// The folder is per build of the test executable (its modification time, in the folder's name): the
+/// executable is relinked whenever the libraries that train the fixture model change, so a model cached by
+/// an earlier build, trained by other code or other defaults, is never reused (it once kept three stale
+/// baselines passing on one machine only).
 inline std::filesystem::path ui_fixture_folder() {
-  const std::filesystem::path folder = std::filesystem::temp_directory_path() /
-                                       ("partreg_ui_fixtures_v" + std::to_string(io::kModelFormatVersion));
+  std::error_code error;
+  const auto built = std::filesystem::last_write_time("/proc/self/exe", error);
+  const auto stamp = error ? 0 : built.time_since_epoch().count();
+  const std::filesystem::path folder =
+      std::filesystem::temp_directory_path() / ("partreg_ui_fixtures_v" + std::to_string(io::kModelFormatVersion) +
+                                                "_" + std::to_string(stamp));
   std::filesystem::create_directories(folder);
   return folder;
 }

@@ -4,6 +4,7 @@
 
 #include "partreg/commands/commands.hpp"
 #include "partreg/commands/common.hpp"
+#include "partreg/core/deformation.hpp"
 #include "partreg/core/space_walk.hpp"
 #include "partreg/io/model_file.hpp"
 
@@ -22,6 +23,13 @@ nlohmann::json stretch_json(const core::CategoryModel& model) {
   return figures;
 }
 
+// How far apart the part spaces put the parts of their own training shapes (null without parts).
+nlohmann::json training_seam_gap_json(const core::CategoryModel& model) {
+  if (!model.has_parts()) return nullptr;
+  const core::SeamGap gap = core::training_seam_gap(model);
+  return {{"mean", gap.mean}, {"max", gap.max}, {"points", gap.points}};
+}
+
 nlohmann::json describe(const core::CategoryModel& model) {
   const auto& record = model.training;
   return {{"category", model.category},
@@ -35,12 +43,14 @@ nlohmann::json describe(const core::CategoryModel& model) {
            {model.normalization.centre.x(), model.normalization.centre.y(), model.normalization.centre.z()}},
           {"spaces", spaces_json(model)},
           {"stretch", stretch_json(model)},
+          {"training_seam_gap", training_seam_gap_json(model)},
           {"training",
            {{"instances", record.instances},
             {"canonical", record.canonical},
             {"canonical_choice", record.canonical_choice},
             {"beta", record.beta},
             {"lambda", record.lambda},
+            {"seam_band", record.seam_band},
             {"outlier_weight", record.outlier_weight},
             {"latent_dimensions", record.latent_dimensions}}}};
 }
@@ -66,6 +76,11 @@ void print(const nlohmann::json& info) {
               << std::round(figure["max_stretch"].get<double>() * 100) / 100 << "x its canonical length "
               << "over -2..+2 sd (PC" << figure["direction"].get<int>() + 1 << " at "
               << figure["std_devs"].get<double>() << " sd)\n";
+  if (!info["training_seam_gap"].is_null())
+    std::cout << "part spaces at the training shapes: seam gap mean "
+              << std::round(info["training_seam_gap"]["mean"].get<double>() * 1e4) / 100 << "%, largest "
+              << std::round(info["training_seam_gap"]["max"].get<double>() * 1e4) / 100
+              << "% of the diagonal (seam band " << info["training"]["seam_band"] << ")\n";
   const auto& training = info["training"];
   std::cout << "trained on " << training["instances"].size() << " instances " << training["instances"].dump()
             << ", canonical " << training["canonical"].get<std::string>() << " ("

@@ -63,6 +63,8 @@ void run_train(TrainOptions& options) {
   if (options.settings.latent_dimensions < 1) throw UsageError("--latent must be at least 1");
   if (options.settings.canonical_points < 10) throw UsageError("--points must be at least 10");
   if (options.settings.min_part_points < 0) throw UsageError("--part-points must be zero or positive");
+  if (!(options.settings.seam_band >= 0.0 && options.settings.seam_band <= 1.0))
+    throw UsageError("--seam-band must be between 0 and 1 (normalised length)");
   if (!options.canonical.empty()) options.settings.canonical = options.canonical;
   try {
     options.settings.up = core::parse_vector3(options.up, "the up axis");
@@ -122,6 +124,11 @@ void add_train_command(CLI::App& app) {
                    "floor of canonical points per part (0: none)")
       ->capture_default_str()
       ->check(CLI::Range(0, 1000000));
+  command
+      ->add_option("--seam-band", options->settings.seam_band,
+                   "band (normalised length) within which part fields are refitted to meet at seams (0: "
+                   "the part CPDs' own fields)")
+      ->capture_default_str();
   command->add_option("--samples", options->dataset.points_per_instance, "surface samples per mesh instance")
       ->capture_default_str()
       ->check(point_count_range());

@@ -7,9 +7,12 @@
 #include "partreg/core/gaussian_kernel.hpp"
 #include "partreg/core/kdtree.hpp"
 #include "partreg/core/sampling.hpp"
+#include "seam_agreement.hpp"
 
 namespace partreg::core {
 namespace {
+
+using detail::smoothstep;
 
 // The spaces whose fields move the points: holistic alone, or every part.
 std::vector<std::size_t> active_spaces(const RegistrationResult& result) {
@@ -29,13 +32,6 @@ Eigen::MatrixXd blend_weights(const CategoryModel& model, const RegistrationResu
   std::vector<const ShapeSpace*> blended;
   for (std::size_t s : spaces) blended.push_back(&space_of(model, result.fits[s]));
   return seam_weights(blended, normalised, blend);
-}
-
-// 3t^2 - 2t^3 on [0, 1]: 0 and 1 with zero slope at both ends, so the weights have no kink at the band's
-// edge.
-double smoothstep(double t) {
-  t = std::clamp(t, 0.0, 1.0);
-  return t * t * (3.0 - 2.0 * t);
 }
 
 // One space's motion of normalised canonical points, ending in the observed data frame.
@@ -134,6 +130,27 @@ SeamGap seam_gap(const CategoryModel& model, const RegistrationResult& result, d
       gap.points += static_cast<int>(distance.size());
     }
   if (gap.points > 0) gap.mean = total / gap.points;
+  return gap;
+}
+
+SeamGap training_seam_gap(const CategoryModel& model, double radius) {
+  SeamGap gap;
+  if (!model.has_parts()) return gap;
+  const Eigen::Index instances = model.holistic().training_latents.rows();
+  for (Eigen::Index i = 0; i < instances; ++i) {
+    RegistrationResult at_instance;
+    at_instance.variant = Variant::partwise;
+    for (std::size_t s = 1; s < model.spaces.size(); ++s) {
+      SpaceFit fit;
+      fit.space = model.spaces[s].name;
+      fit.latent = model.spaces[s].training_latents.row(i).transpose();
+      at_instance.fits.push_back(fit);
+    }
+    const SeamGap own = seam_gap(model, at_instance, radius);
+    gap.mean += own.mean / static_cast<double>(instances);
+    gap.max = std::max(gap.max, own.max);
+    gap.points = own.points;
+  }
   return gap;
 }
 

@@ -6,6 +6,7 @@
 #include "partreg/core/errors.hpp"
 #include "partreg/core/kdtree.hpp"
 #include "partreg/core/sampling.hpp"
+#include "seam_agreement.hpp"
 
 namespace partreg::core {
 namespace {
@@ -311,6 +312,8 @@ CategoryModel train_category(const std::string& category, const std::vector<Trai
                                   std::to_string(model.canonical.rows()) + " points") +
                        " after sampling (a part space needs 10): its labelled surface on '" + canonical.name +
                        "' is too small; check the labels or keep more canonical points");
+    const detail::PartSeam seam =
+        detail::find_part_seam(model.canonical, model.canonical_part, part, rows, settings.seam_band);
     std::vector<Points> part_weights;
     for (std::size_t i = 0; i < instances.size(); ++i) {
       if (i == canonical_index) {
@@ -321,9 +324,10 @@ CategoryModel train_category(const std::string& category, const std::vector<Trai
       if (target.rows() < 10)
         throw InputError("instance '" + instances[i].name + "' has only " + std::to_string(target.rows()) +
                          " points of part '" + part_names[part] + "'");
+      const CpdRun run =
+          register_onto(canonical_part, target, settings, instances[i].name, part_names[part], out, progress);
       part_weights.push_back(
-          register_onto(canonical_part, target, settings, instances[i].name, part_names[part], out, progress)
-              .weights);
+          detail::seam_agreeing_weights(model.canonical, seam, run.weights, holistic_weights[i], settings.beta));
     }
     model.spaces.push_back(
         learn_space(part_names[part], rows, canonical_part, settings, part_weights, progress));
@@ -335,6 +339,7 @@ CategoryModel train_category(const std::string& category, const std::vector<Trai
   record.canonical_choice = out.canonical_choice;
   record.canonical_points = static_cast<int>(m);
   record.min_part_points = model.has_parts() ? settings.min_part_points : 0;
+  record.seam_band = model.has_parts() ? settings.seam_band : 0.0;
   record.beta = settings.beta;
   record.lambda = settings.lambda;
   record.outlier_weight = settings.outlier_weight;

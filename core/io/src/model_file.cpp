@@ -89,6 +89,7 @@ nlohmann::json training_json(const core::TrainingRecord& record) {
           {"canonical_choice", record.canonical_choice},
           {"canonical_points", record.canonical_points},
           {"min_part_points", record.min_part_points},
+          {"seam_band", record.seam_band},
           {"beta", record.beta},
           {"lambda", record.lambda},
           {"outlier_weight", record.outlier_weight},
@@ -262,6 +263,8 @@ core::TrainingRecord training_from_json(const nlohmann::json& json) {
   // Absent in files written before the floor.
   record.min_part_points =
       json.contains("min_part_points") ? detail::integer_of<int>(json.at("min_part_points")) : 0;
+  // Absent in files written before the part spaces agreed at their seams.
+  record.seam_band = json.contains("seam_band") ? json.at("seam_band").get<double>() : 0.0;
   record.beta = json.at("beta").get<double>();
   record.lambda = json.at("lambda").get<double>();
   record.outlier_weight = json.at("outlier_weight").get<double>();

@@ -20,6 +20,7 @@ struct TrainingRecord {
   std::string canonical_choice;        ///< "given" or how it was chosen automatically
   int canonical_points = 0;            ///< M (with every part's floor applied)
   int min_part_points = 0;             ///< floor of canonical points per part used (0: none, older files)
+  double seam_band = 0.0;              ///< band the part fields were refitted in at seams (0: none, older files)
   double beta = 0.0;                   ///< CPD kernel width (normalised units)
   double lambda = 0.0;                 ///< CPD smoothness weight (unitless)
   double outlier_weight = 0.0;         ///< CPD w

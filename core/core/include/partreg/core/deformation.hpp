@@ -61,6 +61,12 @@ struct SeamGap {
 /// point spacing at M = 1000). A holistic result has no seam: all zeros.
 SeamGap seam_gap(const CategoryModel& model, const RegistrationResult& result, double radius = 0.03);
 
+/// The seam gap of the part spaces themselves: each training instance's own latents in every part space,
+/// every part at the identity pose, averaged over the instances (mean of their means, largest of their
+/// largest). How far apart the spaces put the parts of the shapes they were trained on: near zero when they
+/// can represent attached parts (training's seam band), several percent without it. Zeros without parts.
+SeamGap training_seam_gap(const CategoryModel& model, double radius = 0.03);
+
 /// Frames carried over: the position moves like a point; the rotation turns by the local Jacobian of the
 /// deformation (I + dv/dz), orthonormalised by polar decomposition, and then by the pose.
 std::vector<Frame> transfer_frames(const CategoryModel& model, const RegistrationResult& result,

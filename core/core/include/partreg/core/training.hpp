@@ -36,6 +36,11 @@ struct TrainingSettings {
   /// when it has fewer), so a small part's space is learned and fitted from enough points. The real mug's
   /// handle gets 150 instead of 61 of 1000 (docs/training.md). 0 turns the floor off.
   int min_part_points = 150;
+  /// Part spaces agree at their seams: within this band of another part (normalised length) a part's CPD
+  /// field is refitted to pass into the holistic CPD's field, which is one field across every seam, so the
+  /// spaces can represent attached parts (docs/training.md). 0 keeps the part CPDs' fields as they are
+  /// (the paper's training).
+  double seam_band = 0.08;
   int latent_dimensions = 5;  ///< q per space (clamped to K - 1 for K training instances)
   double beta = 0.3;          ///< CPD kernel width (normalised length); see docs/training.md for the choice
   double lambda = 3.0;        ///< CPD smoothness weight (unitless)
