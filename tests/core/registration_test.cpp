@@ -126,8 +126,10 @@ TEST(Registration, TheDeformedMeshFollowsTheDeformedPoints) {
     EXPECT_LT((again.row(i) - result.deformed.row(i)).norm(), 1e-9 * diagonal) << "canonical point " << i;
   }
   EXPECT_GT(alone, model.canonical.rows() / 4);
-  // ... and within the band, where both parts' motions blend, close to them (measured 0.7% on average).
-  EXPECT_LT((again - result.deformed).rowwise().norm().mean(), 0.01 * diagonal);
+  // ... and within the band, where both parts' motions blend, close to them (measured 1.56% on average;
+  // 0.7% with training's seam band 0: the band carries the holistic field into each part's field near the
+  // other part, so across the blend's wider band the two parts' motions differ more on this small model).
+  EXPECT_LT((again - result.deformed).rowwise().norm().mean(), 0.02 * diagonal);
   // The held-out surface is close to the points: they are on it, not merely near the canonical.
   const KdTree surface(observed);
   std::vector<int> index;
