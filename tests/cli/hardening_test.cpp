@@ -171,6 +171,7 @@ TEST_F(Hardening, AbsurdNumbersAreUsageErrorsNamingTheFlag) {
                  1, "labels.json", inputs);
   expect_failure("views " + mesh + " --count -2 --out " + path("v"), 2, "--count", inputs);
   expect_failure("train " + path("nowhere") + " --samples -10 --out " + path("m.prm"), 2, "--samples", inputs);
+  expect_failure("train " + path("nowhere") + " --seam-band 2 --out " + path("m.prm"), 2, "--seam-band", inputs);
 }
 
 TEST_F(Hardening, AMissingSourceIsExitOneLikeEveryOtherMissingInput) {

@@ -254,6 +254,8 @@ def test_train_equals_the_command_line(partreg, model, data_dir, source_dir):
         assert np.allclose(mine.variances, cli.variances, rtol=CPD_CLOSE, atol=0)
         assert np.allclose(mine.kernel_basis, cli.kernel_basis, rtol=0, atol=CPD_CLOSE)
         assert np.allclose(mine.training_latents, cli.training_latents, rtol=0, atol=CPD_CLOSE)
+    with pytest.raises(partreg.UsageError, match="seam_band"):  # the band is a normalised length
+        partreg.train(data_dir / "mugs", seam_band=-0.1)
 
 
 def test_registration_keywords_are_the_command_lines(partreg, model, observed_mug, cli_register):
