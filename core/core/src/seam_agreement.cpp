@@ -20,20 +20,17 @@ double seam_share(double distance, double band) { return smoothstep(2.0 * (1.0 -
 
 }  // namespace
 
-PartSeam find_part_seam(const Points& canonical, const Eigen::VectorXi& canonical_part, int part,
-                        const std::vector<int>& part_rows, double band) {
-  PartSeam seam;
-  seam.rows = part_rows;
-  seam.own = static_cast<int>(part_rows.size());
+SeamRefit::SeamRefit(const Points& canonical, const Eigen::VectorXi& canonical_part, int part,
+                     const std::vector<int>& part_rows, double band, double beta)
+    : canonical_(canonical), beta_(beta) {
   std::vector<int> other_rows;
   for (Eigen::Index i = 0; i < canonical_part.size(); ++i)
     if (canonical_part[i] != part) other_rows.push_back(static_cast<int>(i));
-  seam.follow = Eigen::VectorXd::Zero(seam.own);
-  seam.weight = Eigen::VectorXd::Ones(seam.own);
-  if (other_rows.empty() || part_rows.empty() || !(band > 0.0)) return seam;
+  if (other_rows.empty() || part_rows.empty() || !(band > 0.0)) return;
 
   const KdTree others(select_rows(canonical, other_rows));
   const KdTree own(select_rows(canonical, part_rows));
+  std::vector<int> rows = part_rows;
   std::vector<double> follow, weight;
   for (int row : part_rows) {
     const double d = std::sqrt(others.nearest(canonical.row(row).transpose()).second);
@@ -45,31 +42,29 @@ PartSeam find_part_seam(const Points& canonical, const Eigen::VectorXi& canonica
   for (int row : other_rows) {
     const double d = std::sqrt(own.nearest(canonical.row(row).transpose()).second);
     if (d >= band) continue;
-    seam.rows.push_back(row);
+    rows.push_back(row);
     follow.push_back(1.0);
     weight.push_back(seam_share(d, band));
   }
-  seam.follow = Eigen::Map<const Eigen::VectorXd>(follow.data(), static_cast<Eigen::Index>(follow.size()));
-  seam.weight = Eigen::Map<const Eigen::VectorXd>(weight.data(), static_cast<Eigen::Index>(weight.size()));
-  return seam;
+  follow_ = Eigen::Map<const Eigen::VectorXd>(follow.data(), static_cast<Eigen::Index>(follow.size()));
+  if (!(follow_.maxCoeff() > 0.0)) return;  // no point near another part: nothing to refit
+  weight_ = Eigen::Map<const Eigen::VectorXd>(weight.data(), static_cast<Eigen::Index>(weight.size()));
+  fitted_ = select_rows(canonical, rows);
+  kernel_ = gaussian_kernel(fitted_, select_rows(canonical, part_rows), beta);
+  // Smallest smooth correction: min sum_j weight_j |K_j dW - change_j|^2 + s tr(dW' G dW) (+ a tiny ridge),
+  // G the part's own kernel (the first rows of K).
+  Eigen::MatrixXd normal = kernel_.transpose() * weight_.asDiagonal() * kernel_ +
+                           kSmoothness * kernel_.topRows(static_cast<Eigen::Index>(part_rows.size()));
+  normal.diagonal().array() += 1e-9 * normal.diagonal().mean();
+  normal_.compute(normal);
 }
 
-Points seam_agreeing_weights(const Points& canonical, const PartSeam& seam, const Points& part_weights,
-                             const Points& holistic_weights, double beta) {
-  if (!(seam.follow.maxCoeff() > 0.0)) return part_weights;
-  const std::vector<int> own_rows(seam.rows.begin(), seam.rows.begin() + seam.own);
-  const Points centres = select_rows(canonical, own_rows);
-  const Points fitted = select_rows(canonical, seam.rows);
-  const Eigen::MatrixXd K = gaussian_kernel(fitted, centres, beta);
-  const Eigen::MatrixXd holistic = apply_kernel(fitted, canonical, holistic_weights, beta);
+Points SeamRefit::apply(const Points& part_weights, const Points& holistic_weights) const {
+  if (fitted_.rows() == 0) return part_weights;
+  const Eigen::MatrixXd holistic = apply_kernel(fitted_, canonical_, holistic_weights, beta_);
   // What the part's field must change by: towards the holistic field by each point's share of it.
-  const Eigen::MatrixXd change = seam.follow.asDiagonal() * (holistic - K * part_weights);
-  // Smallest smooth correction: min sum_j weight_j |K_j dW - change_j|^2 + s tr(dW' G dW) (+ a tiny ridge).
-  const Eigen::MatrixXd weighted_K = seam.weight.asDiagonal() * K;
-  const Eigen::MatrixXd G = K.topRows(seam.own);
-  Eigen::MatrixXd normal = K.transpose() * weighted_K + kSmoothness * G;
-  normal.diagonal().array() += 1e-9 * normal.diagonal().mean();
-  const Eigen::MatrixXd correction = normal.ldlt().solve(weighted_K.transpose() * change);
+  const Eigen::MatrixXd change = follow_.asDiagonal() * (holistic - kernel_ * part_weights);
+  const Eigen::MatrixXd correction = normal_.solve(kernel_.transpose() * (weight_.asDiagonal() * change));
   return part_weights + Points(correction);
 }
 

@@ -312,8 +312,8 @@ CategoryModel train_category(const std::string& category, const std::vector<Trai
                                   std::to_string(model.canonical.rows()) + " points") +
                        " after sampling (a part space needs 10): its labelled surface on '" + canonical.name +
                        "' is too small; check the labels or keep more canonical points");
-    const detail::PartSeam seam =
-        detail::find_part_seam(model.canonical, model.canonical_part, part, rows, settings.seam_band);
+    const detail::SeamRefit seam(model.canonical, model.canonical_part, part, rows, settings.seam_band,
+                                 settings.beta);
     std::vector<Points> part_weights;
     for (std::size_t i = 0; i < instances.size(); ++i) {
       if (i == canonical_index) {
@@ -326,8 +326,7 @@ CategoryModel train_category(const std::string& category, const std::vector<Trai
                          " points of part '" + part_names[part] + "'");
       const CpdRun run =
           register_onto(canonical_part, target, settings, instances[i].name, part_names[part], out, progress);
-      part_weights.push_back(
-          detail::seam_agreeing_weights(model.canonical, seam, run.weights, holistic_weights[i], settings.beta));
+      part_weights.push_back(seam.apply(run.weights, holistic_weights[i]));
     }
     model.spaces.push_back(
         learn_space(part_names[part], rows, canonical_part, settings, part_weights, progress));
