@@ -135,14 +135,25 @@ int points_of_part(const CategoryModel& model, int part) {
   return static_cast<int>((model.canonical_part.array() == part).count());
 }
 
-TEST(Training, EveryPartGetsItsFloorOfCanonicalPointsAndKeepsIt) {
+// `count` synthetic mugs of `samples` points each, and training settings small enough for a unit test.
+std::vector<TrainingInstance> synthetic_mugs(int count, int seed, int samples) {
   std::vector<TrainingInstance> instances;
-  for (const auto& synthetic : make_synthetic_category(SyntheticCategory::mug, 3, 4))
-    instances.push_back(instance_of(synthetic, 800));
+  for (const auto& synthetic : make_synthetic_category(SyntheticCategory::mug, count, seed))
+    instances.push_back(instance_of(synthetic, samples));
+  return instances;
+}
+
+TrainingSettings small_settings(int canonical_points, int target_points, int latent_dimensions) {
   TrainingSettings settings;
-  settings.canonical_points = 100;
-  settings.target_points = 300;
-  settings.latent_dimensions = 2;
+  settings.canonical_points = canonical_points;
+  settings.target_points = target_points;
+  settings.latent_dimensions = latent_dimensions;
+  return settings;
+}
+
+TEST(Training, EveryPartGetsItsFloorOfCanonicalPointsAndKeepsIt) {
+  const std::vector<TrainingInstance> instances = synthetic_mugs(3, 4, 800);
+  TrainingSettings settings = small_settings(100, 300, 2);
   settings.min_part_points = 0;
   const CategoryModel without = train_category("mugs", instances, {"body", "handle"}, settings);
   settings.min_part_points = 40;
@@ -158,13 +169,8 @@ TEST(Training, EveryPartGetsItsFloorOfCanonicalPointsAndKeepsIt) {
 }
 
 TEST(Training, PartSpacesAgreeAtTheirSeamsOnTheirTrainingShapes) {
-  std::vector<TrainingInstance> instances;
-  for (const auto& synthetic : make_synthetic_category(SyntheticCategory::mug, 5, 5))
-    instances.push_back(instance_of(synthetic, 1200));
-  TrainingSettings settings;
-  settings.canonical_points = 400;
-  settings.target_points = 600;
-  settings.latent_dimensions = 3;
+  const std::vector<TrainingInstance> instances = synthetic_mugs(5, 5, 1200);
+  TrainingSettings settings = small_settings(400, 600, 3);
   const SeamGap agreeing = training_seam_gap(train_category("mugs", instances, {"body", "handle"}, settings));
   settings.seam_band = 0.0;  // the part CPDs' own fields
   const SeamGap apart = training_seam_gap(train_category("mugs", instances, {"body", "handle"}, settings));
