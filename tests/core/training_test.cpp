@@ -2,6 +2,8 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
+
 #include "partreg/core/deformation.hpp"
 #include "partreg/core/errors.hpp"
 #include "partreg/core/gaussian_kernel.hpp"
@@ -179,6 +181,10 @@ TEST(Training, PartSpacesAgreeAtTheirSeamsOnTheirTrainingShapes) {
   ASSERT_GT(agreeing.points, 0);
   EXPECT_LT(agreeing.mean, 0.007);  // measured 0.0047; 0.021 without the band
   EXPECT_GT(apart.mean, 3.0 * agreeing.mean);
+  for (double band : {-0.1, 1.5, std::nan("")}) {
+    settings.seam_band = band;
+    EXPECT_THROW(train_category("mugs", instances, {"body", "handle"}, settings), UsageError) << band;
+  }
 }
 
 TEST(Training, APartWithoutCanonicalPointsIsRefusedNamingIt) {

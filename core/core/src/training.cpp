@@ -258,6 +258,8 @@ CategoryModel train_category(const std::string& category, const std::vector<Trai
   check_instances(instances, part_names);
   if (!settings.up.allFinite() || !(settings.up.norm() > 1e-12))
     throw UsageError("the up axis must be a finite vector of non-zero length");
+  if (!(settings.seam_band >= 0.0 && settings.seam_band <= 1.0))
+    throw UsageError("the seam band must be between 0 and 1 (normalised length)");
   TrainingReport local_report;
   TrainingReport& out = report ? *report : local_report;
   const std::size_t canonical_index = find_canonical(instances, settings, out.canonical_choice);

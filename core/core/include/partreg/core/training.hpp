@@ -39,7 +39,7 @@ struct TrainingSettings {
   /// Part spaces agree at their seams: within this band of another part (normalised length) a part's CPD
   /// field is refitted to pass into the holistic CPD's field, which is one field across every seam, so the
   /// spaces can represent attached parts (docs/training.md). 0 keeps the part CPDs' fields as they are
-  /// (the paper's training).
+  /// (the paper's training). Outside [0, 1]: UsageError.
   double seam_band = 0.08;
   int latent_dimensions = 5;  ///< q per space (clamped to K - 1 for K training instances)
   double beta = 0.3;          ///< CPD kernel width (normalised length); see docs/training.md for the choice
