@@ -142,7 +142,7 @@ TEST(SharedData, KettleLabelsPropagateToEveryOtherKettle) {
   }
   EXPECT_EQ(model.spaces.size(), 5u);
 
-  // The part spaces agree at their seams on the shapes they were trained on (core/src/seam_agreement.hpp);
+  // The part spaces agree at their seams on the shapes they were trained on (core/core/src/seam_agreement.hpp);
   // the part CPDs' own fields (seam_band 0, the paper's training) put the parts of the same kettle apart.
   core::TrainingSettings unrefitted;
   unrefitted.seam_band = 0.0;

@@ -29,8 +29,9 @@ SeamRefit::SeamRefit(const Points& canonical, const Eigen::VectorXi& canonical_p
     if (canonical_part[i] != part) other_rows.push_back(static_cast<int>(i));
   if (other_rows.empty() || part_rows.empty() || !(band > 0.0)) return;
 
+  const Points own_points = select_rows(canonical, part_rows);
   const KdTree others(select_rows(canonical, other_rows));
-  const KdTree own(select_rows(canonical, part_rows));
+  const KdTree own(own_points);
   std::vector<int> rows = part_rows;
   std::vector<double> follow, weight;
   for (int row : part_rows) {
@@ -51,7 +52,7 @@ SeamRefit::SeamRefit(const Points& canonical, const Eigen::VectorXi& canonical_p
   if (!(follow_.maxCoeff() > 0.0)) return;  // no point near another part: nothing to refit
   weight_ = Eigen::Map<const Eigen::VectorXd>(weight.data(), static_cast<Eigen::Index>(weight.size()));
   fitted_ = select_rows(canonical, rows);
-  kernel_ = gaussian_kernel(fitted_, select_rows(canonical, part_rows), beta);
+  kernel_ = gaussian_kernel(fitted_, own_points, beta);
   // Smallest smooth correction: min sum_j weight_j |K_j dW - change_j|^2 + s tr(dW' G dW) (+ a tiny ridge),
   // G the part's own kernel (the first rows of K).
   Eigen::MatrixXd normal = kernel_.transpose() * weight_.asDiagonal() * kernel_ +
