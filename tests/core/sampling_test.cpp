@@ -55,6 +55,35 @@ TEST(FarthestPointSampling, EveryPickIsTheFarthestFromThoseBefore) {
   }
 }
 
+/// The plain O(N count) loop the pruned sampler must reproduce exactly: ties to the lowest row.
+std::vector<int> plain_farthest_points(const Points& points, std::size_t count, int first) {
+  Eigen::VectorXd distance = Eigen::VectorXd::Constant(points.rows(), std::numeric_limits<double>::infinity());
+  std::vector<int> picks{first};
+  distance[first] = -1.0;
+  while (picks.size() < count) {
+    int farthest = -1;
+    for (Eigen::Index i = 0; i < points.rows(); ++i) {
+      if (distance[i] >= 0.0) distance[i] = std::min(distance[i], (points.row(i) - points.row(picks.back())).squaredNorm());
+      if (farthest < 0 || distance[i] > distance[farthest]) farthest = static_cast<int>(i);
+    }
+    distance[farthest] = -1.0;
+    picks.push_back(farthest);
+  }
+  return picks;
+}
+
+TEST(FarthestPointSampling, PicksWhatThePlainLoopPicksTiesAndDuplicatesIncluded) {
+  // A regular grid (every distance ties with many others) with each point twice, and a random set.
+  Points grid(2 * 512, 3);
+  for (int i = 0; i < 512; ++i)
+    grid.row(i) = grid.row(512 + i) = Eigen::RowVector3d(i % 8, (i / 8) % 8, i / 64);
+  for (const auto& [points, first] : {std::pair{grid, 3}, std::pair{random_points(3000, 11), 0}}) {
+    for (const std::size_t count : {std::size_t{1}, std::size_t{40}, std::size_t{700}, std::size_t(points.rows())})
+      EXPECT_EQ(farthest_point_indices(points, count, first), plain_farthest_points(points, count, first))
+          << count << " of " << points.rows();
+  }
+}
+
 TEST(FarthestPointSampling, PicksTheCornersOfACubeFirst) {
   // Interior points plus the 8 corners: from the centre, the next 8 picks must be the 8 corners.
   Points points(108, 3);

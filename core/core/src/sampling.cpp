@@ -4,10 +4,12 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <queue>
 #include <random>
 #include <unordered_map>
 
 #include "partreg/core/errors.hpp"
+#include "partreg/core/kdtree.hpp"
 
 namespace partreg::core {
 
@@ -51,34 +53,46 @@ std::vector<int> farthest_point_indices(const Points& points, std::size_t count,
                      std::to_string(points.rows()));
   if (count == 0) return {};
   if (first < 0 || first >= points.rows()) throw UsageError("farthest-point sampling: bad first index");
-  // One pass per chosen point over separate coordinate arrays: update each distance to the chosen set and
-  // find the farthest in the same loop (the compiler vectorises it; no temporaries per step).
-  const Eigen::Index n = points.rows();
-  const Eigen::VectorXd xs = points.col(0), ys = points.col(1), zs = points.col(2);
-  const double *x = xs.data(), *y = ys.data(), *z = zs.data();
-  std::vector<double> distance(static_cast<std::size_t>(n), std::numeric_limits<double>::infinity());
+  // Choosing a point can only lower the distance of points closer to it than the farthest distance left
+  // (the chosen point's own), so each step updates just the points within that radius (a KD-tree query)
+  // instead of all of them, and a max-heap keeps the farthest point (stale entries are skipped when they
+  // surface). Ties go to the lowest row, so the result is that of the plain O(N count) loop.
+  const auto n = static_cast<std::size_t>(points.rows());
+  std::vector<double> distance(n, std::numeric_limits<double>::infinity());
   // A chosen row's distance is -1, below every distance left, so no row is chosen twice even once every
   // distinct position is taken and the rest are duplicates at distance 0.
   distance[static_cast<std::size_t>(first)] = -1.0;
+  using Entry = std::pair<double, int>;  // distance, row
+  const auto before = [](const Entry& a, const Entry& b) {
+    return a.first < b.first || (a.first == b.first && a.second > b.second);
+  };
+  std::priority_queue<Entry, std::vector<Entry>, decltype(before)> farthest(before);
+  const KdTree tree(points);
+  std::vector<std::pair<int, double>> near;
   std::vector<int> chosen{first};
   chosen.reserve(count);
-  Eigen::Index next = first;
+  double reach = std::numeric_limits<double>::infinity();  // squared distance of the point just chosen
   while (chosen.size() < count) {
-    const double cx = x[next], cy = y[next], cz = z[next];
-    double farthest = -2.0;
-    Eigen::Index farthest_index = 0;
-    for (Eigen::Index i = 0; i < n; ++i) {
-      const double dx = x[i] - cx, dy = y[i] - cy, dz = z[i] - cz;
-      const double d = std::min(distance[static_cast<std::size_t>(i)], dx * dx + dy * dy + dz * dz);
-      distance[static_cast<std::size_t>(i)] = d;
-      if (d > farthest) {
-        farthest = d;
-        farthest_index = i;
+    const Eigen::RowVector3d centre = points.row(chosen.back());
+    const auto update = [&](int row) {
+      const double d = (points.row(row) - centre).squaredNorm();
+      if (d < distance[static_cast<std::size_t>(row)]) {
+        distance[static_cast<std::size_t>(row)] = d;
+        farthest.push({d, row});
       }
+    };
+    if (std::isfinite(reach)) {
+      tree.radius(centre.transpose(), std::sqrt(reach) * (1.0 + 1e-9) + 1e-300, near);
+      for (const auto& [row, squared] : near) update(row);
+    } else {
+      for (std::size_t row = 0; row < n; ++row) update(static_cast<int>(row));
     }
-    next = farthest_index;
-    distance[static_cast<std::size_t>(next)] = -1.0;
-    chosen.push_back(static_cast<int>(next));
+    while (farthest.top().first != distance[static_cast<std::size_t>(farthest.top().second)]) farthest.pop();
+    const auto [d, row] = farthest.top();
+    farthest.pop();
+    reach = d;
+    distance[static_cast<std::size_t>(row)] = -1.0;
+    chosen.push_back(row);
   }
   return chosen;
 }
