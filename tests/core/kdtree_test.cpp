@@ -1,4 +1,4 @@
-// The KD-tree against brute force: every answer must equal what scanning all points gives, on random
+// The KD-tree against brute force: every answer (with and without a starting hint) must equal what scanning all points gives, on random
 // clouds and on the degenerate sets registration meets (duplicates, a line, a plane, one point).
 #include "partreg/core/kdtree.hpp"
 
@@ -66,6 +66,12 @@ void expect_matches_brute_force(const Points& points, const Points& queries, dou
     EXPECT_NEAR(squared, best, 1e-12);
     EXPECT_NEAR(squared_distance(points, index, query), best, 1e-12) << "the index is not a nearest row";
     EXPECT_NEAR(all_squared[q], best, 1e-12);
+    // Starting from a hint, whichever: the nearest of its neighbours, the farthest row, the answer itself.
+    for (const int hint : {tree.nearest_k(query, 3).back().first, static_cast<int>(points.rows() - 1), index}) {
+      const auto [hinted_index, hinted_squared] = tree.nearest(query, hint);
+      EXPECT_NEAR(hinted_squared, best, 1e-12) << "from hint " << hint;
+      EXPECT_NEAR(squared_distance(points, hinted_index, query), best, 1e-12) << "from hint " << hint;
+    }
     EXPECT_NEAR(squared_distance(points, all_index[static_cast<std::size_t>(q)], query), best, 1e-12);
 
     // The k nearest: distinct rows, nearest first, and their distances the k smallest of the scan.

@@ -350,10 +350,11 @@ std::vector<SearchOutcome> solve_coupled(const CategoryModel& model, const Point
   bool converged = false, had_pairs = true;
   int iterations = 0;
   double cost = 0.0;
+  CorrespondenceHints hints;
   for (int outer = 0; outer < settings.convergence.outer_iterations; ++outer) {
     std::vector<bool> visible;
     const Points posed = assemble(model, parts, unknowns, observation, visible);
-    const Correspondences pairs = correspond(posed, visible, observation, settings);
+    const Correspondences pairs = correspond(posed, visible, observation, settings, &hints);
     if (pairs.from_canonical.empty() && pairs.from_observed.empty()) {
       had_pairs = false;
       break;

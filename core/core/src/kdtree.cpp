@@ -64,6 +64,30 @@ std::pair<int, double> KdTree::nearest(const Eigen::Vector3d& query) const {
   return {index, squared};
 }
 
+namespace {
+
+// A nanoflann result set for one nearest point that starts with a known point and its distance as the
+// bound, so the search visits only the cells that could hold a closer one.
+struct CloserThan {
+  int index;
+  double squared;
+  std::size_t size() const { return 1; }
+  bool full() const { return true; }
+  double worstDist() const { return squared; }
+  bool addPoint(double distance, int row) {
+    if (distance < squared) squared = distance, index = row;
+    return true;
+  }
+};
+
+}  // namespace
+
+std::pair<int, double> KdTree::nearest(const Eigen::Vector3d& query, int hint) const {
+  CloserThan result{hint, (points_.row(hint).transpose() - query).squaredNorm()};
+  index_->tree.findNeighbors(result, query.data(), nanoflann::SearchParams());
+  return {result.index, result.squared};
+}
+
 void KdTree::nearest_all(const Points& queries, std::vector<int>& index,
                          Eigen::VectorXd& squared_distance) const {
   index.resize(static_cast<std::size_t>(queries.rows()));

@@ -26,27 +26,41 @@ void trim(std::vector<Pair>& pairs, double fraction) {
 }  // namespace
 
 Correspondences correspond(const Points& posed, const std::vector<bool>& visible,
-                           const Observation& observation, const RegistrationSettings& settings) {
+                           const Observation& observation, const RegistrationSettings& settings,
+                           CorrespondenceHints* hints) {
   Correspondences result;
   std::vector<int> active;
   for (std::size_t m = 0; m < visible.size(); ++m)
     if (visible[m]) active.push_back(static_cast<int>(m));
   if (active.empty()) return result;
+  CorrespondenceHints none;
+  CorrespondenceHints& last = hints ? *hints : none;
+  last.observed_of_row.resize(static_cast<std::size_t>(posed.rows()), -1);
+  last.row_of_observed.resize(static_cast<std::size_t>(observation.points.rows()), -1);
   if (settings.objective.direction != Direction::observed_to_canonical) {
     for (int m : active) {
-      const auto [n, squared] = observation.tree->nearest(posed.row(m).transpose());
+      int& hint = last.observed_of_row[static_cast<std::size_t>(m)];
+      const Eigen::Vector3d query = posed.row(m).transpose();
+      const auto [n, squared] = hint >= 0 ? observation.tree->nearest(query, hint) : observation.tree->nearest(query);
+      hint = n;
       result.from_canonical.push_back({m, observation.points.row(n).transpose(), squared});
     }
   }
   if (settings.objective.direction != Direction::canonical_to_observed) {
     Points active_points(static_cast<Eigen::Index>(active.size()), 3);
-    for (std::size_t i = 0; i < active.size(); ++i)
+    std::vector<int> active_of_row(static_cast<std::size_t>(posed.rows()), -1);
+    for (std::size_t i = 0; i < active.size(); ++i) {
       active_points.row(static_cast<Eigen::Index>(i)) = posed.row(active[i]);
-    const KdTree tree(active_points);
+      active_of_row[static_cast<std::size_t>(active[i])] = static_cast<int>(i);
+    }
+    const KdTree tree(std::move(active_points));
     for (Eigen::Index n = 0; n < observation.points.rows(); ++n) {
-      const auto [i, squared] = tree.nearest(observation.points.row(n).transpose());
-      result.from_observed.push_back(
-          {active[static_cast<std::size_t>(i)], observation.points.row(n).transpose(), squared});
+      int& row = last.row_of_observed[static_cast<std::size_t>(n)];
+      const int hint = row >= 0 ? active_of_row[static_cast<std::size_t>(row)] : -1;
+      const Eigen::Vector3d query = observation.points.row(n).transpose();
+      const auto [i, squared] = hint >= 0 ? tree.nearest(query, hint) : tree.nearest(query);
+      row = active[static_cast<std::size_t>(i)];
+      result.from_observed.push_back({row, query, squared});
     }
   }
   if (settings.objective.loss == Loss::trimmed) {
@@ -118,13 +132,14 @@ SpaceSolution solve_space(const ShapeSpace& space, const Points& normals, const 
   solution.latent = initial_latent;
   solution.pose = initial_pose;
   double previous = std::numeric_limits<double>::infinity();
+  CorrespondenceHints hints;
   for (int outer = 0; outer < settings.convergence.outer_iterations; ++outer) {
     const Eigen::VectorXd before_latent = solution.latent;
     const Eigen::Vector3d before_translation = solution.pose.translation;
     const Eigen::Quaterniond before_rotation = solution.pose.rotation;
     const Points posed = solution.pose.apply(deformed_points(space, solution.latent));
     const Correspondences pairs = correspond(
-        posed, visible_rows(posed, normals, solution.pose, observation.viewpoint), observation, settings);
+        posed, visible_rows(posed, normals, solution.pose, observation.viewpoint), observation, settings, &hints);
     if (pairs.from_canonical.empty() && pairs.from_observed.empty()) {
       solution.had_pairs = false;
       break;

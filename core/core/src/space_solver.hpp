@@ -56,10 +56,19 @@ struct Correspondences {
   std::vector<Pair> from_canonical, from_observed;
 };
 
+/// The last step's closest points by index, kept by a solver from one correspondence step to the next: the
+/// points move a little between steps, so each search starts from its last answer (KdTree::nearest with a
+/// hint) and visits a small part of the tree. The pairs are the same as without.
+struct CorrespondenceHints {
+  std::vector<int> observed_of_row;  ///< per posed row: its last nearest observed point (-1: none yet)
+  std::vector<int> row_of_observed;  ///< per observed point: its last nearest posed row (-1: none yet)
+};
+
 /// The closest-point pairs between the `visible` rows of `posed` and the observation, in the directions the
-/// objective sums over, trimmed when the loss is trimmed.
+/// objective sums over, trimmed when the loss is trimmed. `hints` (optional) is read and updated.
 Correspondences correspond(const Points& posed, const std::vector<bool>& visible,
-                           const Observation& observation, const RegistrationSettings& settings);
+                           const Observation& observation, const RegistrationSettings& settings,
+                           CorrespondenceHints* hints = nullptr);
 
 /// The pairs weighted for one IRLS step: the robust loss's weight at each pair's distance times its
 /// direction's 1 / count.

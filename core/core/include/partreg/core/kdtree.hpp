@@ -21,6 +21,10 @@ class KdTree {
 
   /// Index of the nearest point and its squared distance. The tree must not be empty.
   std::pair<int, double> nearest(const Eigen::Vector3d& query) const;
+  /// The same, searching only closer than the point `hint` (an earlier answer for a query that has moved a
+  /// little): the tree prunes all but a small neighbourhood, and the answer is still the nearest point (the
+  /// hint itself when none is closer). `hint` must be a row of the tree.
+  std::pair<int, double> nearest(const Eigen::Vector3d& query, int hint) const;
   /// Nearest point of every row of `queries` (threaded); fills index and squared distance per query.
   void nearest_all(const Points& queries, std::vector<int>& index, Eigen::VectorXd& squared_distance) const;
   /// The `k` nearest points (fewer if the tree holds fewer) as (index, squared distance), nearest first.
