@@ -19,7 +19,7 @@
 #include "partreg/io/geometry_io.hpp"
 #include "partreg/io/mesh_io.hpp"
 #include "partreg/io/model_file.hpp"
-#include "registration_keywords.hpp"
+#include "setting_keywords.hpp"
 
 namespace partreg::python {
 namespace {
@@ -89,26 +89,25 @@ void bind_files(py::module_& m) {
 }
 
 void bind_training(py::module_& m) {
-  const core::TrainingSettings training;
   const io::DatasetOptions dataset;
+  // The docstring lists every keyword from the table, so help(partreg.train) cannot go out of date.
+  const std::string train_doc =
+      "Trains a category from a folder of pose-aligned instances, as `partreg train`. labels: a labels file "
+      "giving the canonical its parts; canonical: the instance to use as canonical (default: automatic); "
+      "samples and seed: surface samples per mesh instance and their seed (--samples, --seed); threads: as "
+      "--threads, all counted, 0 = all cores. Keyword arguments are the training options of `partreg train` "
+      "('-' as '_', lambda_ for --lambda, same defaults; lengths normalised: the canonical's diagonal is 1). "
+      "UsageError for an unknown keyword or a value out of range, naming the keyword."
+      "\n\nKeywords (default, help):" +
+      training_keywords_doc();
   m.def(
       "train",
-      [](const Path& folder, std::optional<Path> labels, std::optional<std::string> canonical, int latent,
-         int points, int samples, double beta, double lambda, double seam_band, std::uint64_t seed,
-         int threads, const std::array<double, 3>& up) {
-        const core::ThreadBudget budget(thread_count(threads));
-        if (latent < 1) throw UsageError("latent must be at least 1");
-        if (points < 10) throw UsageError("points must be at least 10");
-        if (!(seam_band >= 0.0 && seam_band <= 1.0))
-          throw UsageError("seam_band must be between 0 and 1 (normalised length)");
-        core::TrainingSettings settings;
-        settings.seam_band = seam_band;
-        settings.latent_dimensions = latent;
-        settings.canonical_points = points;
-        settings.beta = beta;
-        settings.lambda = lambda;
+      [](const Path& folder, std::optional<Path> labels, std::optional<std::string> canonical, int samples,
+         std::uint64_t seed, int threads, const py::kwargs& keywords) {
+        core::TrainingSettings settings = training_settings(keywords);
         settings.canonical = canonical;
-        settings.up = Eigen::Vector3d(up[0], up[1], up[2]);
+        py::gil_scoped_release release;
+        const core::ThreadBudget budget(thread_count(threads));
         const io::DatasetOptions options{samples, seed};
         io::Dataset read = io::read_dataset(folder, options);
         if (labels)
@@ -116,16 +115,14 @@ void bind_training(py::module_& m) {
         return std::make_shared<core::CategoryModel>(
             core::train_category(read.name, read.instances, read.part_names, settings));
       },
-      Release(), py::arg("dataset_dir"), py::kw_only(), py::arg("labels") = py::none(),
-      py::arg("canonical") = py::none(), py::arg("latent") = training.latent_dimensions,
-      py::arg("points") = training.canonical_points, py::arg("samples") = dataset.points_per_instance,
-      py::arg("beta") = training.beta, py::arg("lambda_") = training.lambda,
-      py::arg("seam_band") = training.seam_band, py::arg("seed") = dataset.seed,
-      py::arg("threads") = 0, py::arg("up") = std::array<double, 3>{0.0, 1.0, 0.0},
-      "Trains a category from a folder of pose-aligned instances, as `partreg train` with the same options "
-      "(lambda_ is --lambda; seam_band is --seam-band; up is --up, the category's up axis, kept in the model). labels: a labels file "
-      "giving the canonical its parts. beta in normalised units "
-      "(canonical diagonal 1). threads: as --threads, all counted, 0 = all cores.");
+      py::arg("dataset_dir"), py::kw_only(), py::arg("labels") = py::none(), py::arg("canonical") = py::none(),
+      py::arg("samples") = dataset.points_per_instance, py::arg("seed") = dataset.seed, py::arg("threads") = 0,
+      train_doc.c_str());  // pybind11 copies the text
+  m.def("training_defaults", &training_defaults,
+        "Every training keyword of train() with its default (the command line's).");
+  m.def("training_options", &training_options,
+        "Every training keyword: keyword, option (the command line's flag), value (its form), help (with "
+        "units), default.");
 }
 
 void bind_registration(py::module_& m) {

@@ -258,6 +258,31 @@ def test_train_equals_the_command_line(partreg, model, data_dir, source_dir):
         partreg.train(data_dir / "mugs", seam_band=-0.1)
 
 
+def test_training_keywords_are_the_command_lines(partreg, cli_dir, data_dir):
+    # The keywords come from the one table of training options: the command line's names ('-' as '_',
+    # lambda_ for --lambda) and defaults, as `train --json` recorded them (points aside: the CLI asked for 500).
+    defaults = partreg.training_defaults()
+    options = partreg.training_options()
+    assert [option["keyword"] for option in options] == list(defaults)
+    assert all(option["option"] == "--" + option["keyword"].rstrip("_").replace("_", "-") for option in options)
+    recorded = json.loads((cli_dir / "train.json").read_text())["settings"]
+    assert sorted(option["option"][2:] for option in options) == sorted(recorded)
+    assert recorded["points"] == "500"
+    for option in options:
+        text, value = recorded[option["option"][2:]], defaults[option["keyword"]]
+        if option["keyword"] == "points":
+            continue
+        if isinstance(value, (int, float)):
+            assert float(text) == value, option["keyword"]
+        else:
+            assert np.allclose([float(v) for v in text.split(",")], value), option["keyword"]
+    assert "lambda_" in defaults and "seam_band" in partreg.train.__doc__
+    with pytest.raises(partreg.UsageError, match="unknown training setting 'lamda'"):
+        partreg.train(data_dir / "mugs", lamda=3)
+    with pytest.raises(partreg.UsageError, match="up: up axis .* has zero length"):
+        partreg.train(data_dir / "mugs", up=[0, 0, 0])
+
+
 def test_registration_keywords_are_the_command_lines(partreg, model, observed_mug, cli_register):
     # The keywords come from the one table of registration options: the same names ('-' as '_'), the same
     # defaults as the settings the CLI recorded in its result (hol+part aside, as it was asked for).

@@ -8,6 +8,7 @@
 
 #include "partreg/core/errors.hpp"
 #include "partreg/core/registration_options.hpp"
+#include "partreg/core/training_options.hpp"
 #include "partreg/ui/executor.hpp"
 
 namespace partreg::ui {
@@ -89,6 +90,15 @@ TEST(Script, RegisterTakesEveryRegistrationSetting) {
                                     option.name) != registration->options.end();
     EXPECT_EQ(accepted, option.name != "variant") << option.name;
   }
+}
+
+// The train verb accepts every training setting by its option name, and where the model goes.
+TEST(Script, TrainTakesEveryTrainingSetting) {
+  const Verb* train = find_verb("train");
+  ASSERT_NE(train, nullptr);
+  std::set<std::string> expected{"out"};
+  for (const core::TrainingOption& option : core::training_options()) expected.insert(option.name);
+  EXPECT_EQ(std::set<std::string>(train->options.begin(), train->options.end()), expected);
 }
 
 }  // namespace

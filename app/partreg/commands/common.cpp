@@ -49,6 +49,14 @@ void write_json_or_stdout(const nlohmann::json& report, const std::string& path,
   if (log) std::cerr << "wrote " << path << '\n';
 }
 
+nlohmann::json settings_json(const std::vector<std::pair<std::string, std::string>>& values,
+                             const std::set<std::string>& skip) {
+  nlohmann::json json = nlohmann::json::object();
+  for (const auto& [name, value] : values)
+    if (!skip.count(name)) json[name] = value;
+  return json;
+}
+
 nlohmann::json spaces_json(const core::CategoryModel& model) {
   auto values = [](const Eigen::VectorXd& v) { return std::vector<double>(v.data(), v.data() + v.size()); };
   nlohmann::json spaces = nlohmann::json::array();

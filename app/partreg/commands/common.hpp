@@ -7,6 +7,7 @@
 #include <cstdint>
 #include <filesystem>
 #include <nlohmann/json.hpp>
+#include <set>
 #include <string>
 #include <utility>
 
@@ -32,6 +33,10 @@ using io::matrix_json;
 
 /// Each space of a model: name, points, dimensions, beta, variances and explained fraction per dimension.
 nlohmann::json spaces_json(const core::CategoryModel& model);
+
+/// Option values (core/setting_option.hpp's option_values) as a JSON object by name, leaving out `skip`.
+nlohmann::json settings_json(const std::vector<std::pair<std::string, std::string>>& values,
+                             const std::set<std::string>& skip = {});
 
 using io::apply_labels_file;
 

@@ -14,10 +14,11 @@
 #include "partreg/commands/commands.hpp"
 #include "partreg/commands/common.hpp"
 #include "partreg/commands/console.hpp"
-#include "partreg/commands/registration_flags.hpp"
+#include "partreg/commands/setting_flags.hpp"
 #include "partreg/core/errors.hpp"
 #include "partreg/core/parallel.hpp"
 #include "partreg/core/registration_options.hpp"
+#include "partreg/core/training_options.hpp"
 #include "partreg/eval/protocol.hpp"
 #include "partreg/eval/report.hpp"
 #include "partreg/io/cloud_io.hpp"
@@ -118,15 +119,8 @@ void configure(EvalOptions& options) {
   if (settings.variants.empty()) throw UsageError("--variants needs at least one variant");
   settings.use_viewpoint = !options.no_viewpoint;
   settings.baselines = !options.no_baselines;
+  if (settings.registration.initialisation.up) settings.training.up = *settings.registration.initialisation.up;
   parse_shard(options.shard, settings);
-}
-
-// The registration settings every row used (its variant and viewpoint are the row's own).
-nlohmann::json registration_json(const core::RegistrationSettings& settings) {
-  nlohmann::json json = nlohmann::json::object();
-  for (const auto& [name, value] : core::registration_option_values(settings))
-    if (name != "variant" && name != "viewpoint") json[name] = value;
-  return json;
 }
 
 // results.csv, tables.md and the sweep plots of every category, into `folder`.
@@ -175,7 +169,10 @@ void run_eval(EvalOptions& options) {
       {"threads", options.settings.threads},
       {"variants", options.variants},
       {"baselines", options.settings.baselines},
-      {"registration", registration_json(options.settings.registration)},
+      // The settings every row used (a row's variant and viewpoint are its own), and every fold's training.
+      {"registration",
+       settings_json(core::registration_option_values(options.settings.registration), {"variant", "viewpoint"})},
+      {"training", settings_json(core::training_option_values(options.settings.training))},
       {"registrations", registrations},
       {"rows", rows.size()},
       {"seconds", seconds},
@@ -240,6 +237,8 @@ void add_eval_command(CLI::App& app) {
   // Every registration setting but the variant (one row per --variants entry) and the viewpoint (each
   // partial view's own camera, unless --no-viewpoint).
   add_registration_flags(command, o->settings.registration, {"variant", "viewpoint"});
+  // Every training setting of the folds' models; --up (above) is the category's up axis for both.
+  add_training_flags(command, o->settings.training, {"up"});
   command->add_flag("--no-viewpoint", o->no_viewpoint, "do not tell the registration where the camera was");
   command->add_flag("--no-baselines", o->no_baselines,
                     "skip the baseline rows (oracle-template, rigid-canonical, mean-shape)");

@@ -7,7 +7,7 @@
 
 #include "partreg/commands/common.hpp"
 #include "partreg/commands/console.hpp"
-#include "partreg/commands/registration_flags.hpp"
+#include "partreg/commands/setting_flags.hpp"
 #include "partreg/commands/render_common.hpp"
 #include "partreg/core/errors.hpp"
 #include "partreg/core/parallel.hpp"

@@ -8,7 +8,7 @@
 #include "partreg/commands/commands.hpp"
 #include "partreg/commands/common.hpp"
 #include "partreg/commands/console.hpp"
-#include "partreg/commands/registration_flags.hpp"
+#include "partreg/commands/setting_flags.hpp"
 #include "partreg/core/deformation.hpp"
 #include "partreg/core/errors.hpp"
 #include "partreg/core/kdtree.hpp"

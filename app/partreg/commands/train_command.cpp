@@ -6,11 +6,11 @@
 #include "partreg/commands/commands.hpp"
 #include "partreg/commands/common.hpp"
 #include "partreg/commands/console.hpp"
-#include "partreg/commands/registration_flags.hpp"
+#include "partreg/commands/setting_flags.hpp"
 #include "partreg/core/errors.hpp"
 #include "partreg/core/parallel.hpp"
-#include "partreg/core/part_selection.hpp"
 #include "partreg/core/training.hpp"
+#include "partreg/core/training_options.hpp"
 #include "partreg/io/dataset.hpp"
 #include "partreg/io/model_file.hpp"
 #include "partreg/io/output_format.hpp"
@@ -25,18 +25,19 @@ struct TrainOptions {
   std::string canonical;
   std::string labels_path;
   std::string json_path;
-  std::string up = "0,1,0";  // the category's up axis, X,Y,Z
   io::DatasetOptions dataset;
   core::TrainingSettings settings;
 };
 
-nlohmann::json summary_json(const core::CategoryModel& model, const core::TrainingReport& report) {
+nlohmann::json summary_json(const core::CategoryModel& model, const core::TrainingReport& report,
+                            const core::TrainingSettings& settings) {
   return {{"category", model.category},
           {"canonical", model.training.canonical},
           {"canonical_choice", report.canonical_choice},
           {"instances", model.training.instances},
           {"spaces", spaces_json(model)},
           {"label_agreement", report.label_agreement},
+          {"settings", settings_json(core::training_option_values(settings))},
           {"seconds", report.seconds}};
 }
 
@@ -60,19 +61,7 @@ void print_summary(const core::CategoryModel& model, const core::TrainingReport&
 
 void run_train(TrainOptions& options) {
   const core::ThreadBudget budget(options.threads);
-  if (options.settings.latent_dimensions < 1) throw UsageError("--latent must be at least 1");
-  if (options.settings.canonical_points < 10) throw UsageError("--points must be at least 10");
-  if (options.settings.min_part_points < 0) throw UsageError("--part-points must be zero or positive");
-  if (!(options.settings.seam_band >= 0.0 && options.settings.seam_band <= 1.0))
-    throw UsageError("--seam-band must be between 0 and 1 (normalised length)");
   if (!options.canonical.empty()) options.settings.canonical = options.canonical;
-  try {
-    options.settings.up = core::parse_vector3(options.up, "the up axis");
-  } catch (const UsageError& error) {
-    throw UsageError(std::string("--up: ") + error.what());
-  }
-  if (!options.settings.up.allFinite() || !(options.settings.up.norm() > 1e-12))
-    throw UsageError("--up: the up axis " + options.up + " must be finite and of non-zero length");
   io::check_output(options.out_path, io::OutputKind::model, "--out");
   io::check_output(options.json_path, io::OutputKind::json, "--json");
   io::Dataset dataset = io::read_dataset(options.dataset_path, options.dataset);
@@ -96,7 +85,7 @@ void run_train(TrainOptions& options) {
   io::write_model(options.out_path, model);
   print_summary(model, report);
   std::cerr << "wrote " << options.out_path << '\n';
-  write_json_or_stdout(summary_json(model, report), options.json_path);
+  write_json_or_stdout(summary_json(model, report, options.settings), options.json_path);
 }
 
 }  // namespace
@@ -113,34 +102,11 @@ void add_train_command(CLI::App& app) {
   command->add_option("--out", options->out_path, "model file to write (.prm)")->required();
   command->add_option("--canonical", options->canonical, "instance to use as canonical (default: automatic)");
   command->add_option("--labels", options->labels_path, "labels file giving the canonical its parts");
-  command->add_option("--latent", options->settings.latent_dimensions, "dimensions per shape space")
-      ->capture_default_str()
-      ->check(CLI::Range(1, 1000));
-  command->add_option("--points", options->settings.canonical_points, "canonical points M")
-      ->capture_default_str()
-      ->check(CLI::Range(10, 1000000));
-  command
-      ->add_option("--part-points", options->settings.min_part_points,
-                   "floor of canonical points per part (0: none)")
-      ->capture_default_str()
-      ->check(CLI::Range(0, 1000000));
-  command
-      ->add_option("--seam-band", options->settings.seam_band,
-                   "band (normalised length) within which part fields are refitted to meet at seams (0: "
-                   "the part CPDs' own fields)")
-      ->capture_default_str();
   command->add_option("--samples", options->dataset.points_per_instance, "surface samples per mesh instance")
       ->capture_default_str()
       ->check(point_count_range());
-  command->add_option("--beta", options->settings.beta, "CPD kernel width (normalised length)")
-      ->capture_default_str();
-  command->add_option("--lambda", options->settings.lambda, "CPD smoothness weight")->capture_default_str();
   command->add_option("--seed", options->dataset.seed, "sampling seed")->capture_default_str();
-  command
-      ->add_option("--up", options->up,
-                   "X,Y,Z: the category's up axis in its data frame; registration turns about it (z for "
-                   "the drills)")
-      ->capture_default_str();
+  add_training_flags(command, options->settings);
   command->add_option("--json", options->json_path, "write a training summary as JSON ('-' for stdout)");
   command->callback([options] { run_train(*options); });
 }

@@ -6,6 +6,7 @@
 #include "partreg/core/errors.hpp"
 #include "partreg/core/kdtree.hpp"
 #include "partreg/core/sampling.hpp"
+#include "partreg/core/training_options.hpp"
 #include "seam_agreement.hpp"
 
 namespace partreg::core {
@@ -256,10 +257,7 @@ CategoryModel train_category(const std::string& category, const std::vector<Trai
                              TrainingReport* report, const TrainingProgressCallback& steps) {
   const auto start = std::chrono::steady_clock::now();
   check_instances(instances, part_names);
-  if (!settings.up.allFinite() || !(settings.up.norm() > 1e-12))
-    throw UsageError("the up axis must be a finite vector of non-zero length");
-  if (!(settings.seam_band >= 0.0 && settings.seam_band <= 1.0))
-    throw UsageError("the seam band must be between 0 and 1 (normalised length)");
+  validate(settings);  // the ranges of training_options.hpp, as every front end reads them
   TrainingReport local_report;
   TrainingReport& out = report ? *report : local_report;
   const std::size_t canonical_index = find_canonical(instances, settings, out.canonical_choice);

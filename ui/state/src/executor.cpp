@@ -14,6 +14,7 @@
 #include "partreg/core/errors.hpp"
 #include "partreg/core/part_selection.hpp"
 #include "partreg/core/registration_options.hpp"
+#include "partreg/core/training_options.hpp"
 #include "partreg/io/atomic_file.hpp"
 #include "partreg/io/cloud_io.hpp"
 #include "partreg/io/frames_file.hpp"
@@ -354,6 +355,13 @@ std::vector<std::string> register_options() {
   return names;
 }
 
+// The train verb's options: where the model goes, and every training setting.
+std::vector<std::string> train_options() {
+  std::vector<std::string> names{"out"};
+  for (const core::TrainingOption& option : core::training_options()) names.push_back(option.name);
+  return names;
+}
+
 std::vector<Verb> make_verbs() {
   return {
       {"load", 1, 1, {}, "PATH  (a model .prm, a mesh to label, or a cloud to register)", load},
@@ -549,8 +557,9 @@ std::vector<Verb> make_verbs() {
       {"train",
        1,
        1,
-       {"out"},
-       "DATASET [out=MODEL.prm]  (the labelled mesh becomes the canonical)",
+       train_options(),
+       "DATASET [out=MODEL.prm] [NAME=VALUE ...]  (every training setting, as partreg train's flags; the "
+       "labelled mesh becomes the canonical)",
        [](AppState& s, const Command& c) {
          const TrainingJob job = prepare_training(s, c);
          return apply_training(s, job, job.run());
@@ -673,7 +682,10 @@ Outcome apply_registration(AppState& state, const RegistrationJob& job, core::Re
 }
 
 TrainingJob prepare_training(const AppState& state, const Command& command) {
-  return prepare_training_job(state, command.arguments.at(0), command.option("out", "model.prm"));
+  TrainingJob job = prepare_training_job(state, command.arguments.at(0), command.option("out", "model.prm"));
+  for (const auto& [name, value] : command.options)
+    if (name != "out") core::training_option(name).set(job.settings, value);
+  return job;
 }
 
 Outcome apply_training(AppState& state, const TrainingJob& job, const std::string& summary) {

@@ -66,7 +66,7 @@ TrainingJob prepare_training_job(const AppState& state, const std::string& datas
 std::string TrainingJob::run(const core::TrainingProgressCallback& progress) const {
   if (progress) progress(core::TrainingProgress{0, 0, "reading " + dataset_path});
   io::Dataset dataset = io::read_dataset(dataset_path);
-  core::TrainingSettings settings;
+  core::TrainingSettings settings = this->settings;
   std::string canonical_note = "no labels used";
   const bool in_dataset =
       !labelled_instance.empty() && !dataset.part_folders &&

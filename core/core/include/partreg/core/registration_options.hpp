@@ -1,27 +1,19 @@
 #pragma once
 /// \file
-/// Every registration setting as a named option, declared once. The command line turns each into `--NAME`,
-/// the app's `register` verb into `NAME=VALUE`, the Python module into a keyword argument (with '-' as
-/// '_'). Values travel as text so that every front end parses them alike; a bad value is a UsageError that
-/// names the value (the front end adds where it came from, e.g. the flag).
+/// Every registration setting as a named option (setting_option.hpp), declared once. The command line turns
+/// each into `--NAME`, the app's `register` verb into `NAME=VALUE`, the Python module's register() into a
+/// keyword argument (with '-' as '_').
 
-#include <functional>
 #include <string>
 #include <vector>
 
 #include "partreg/core/registration_settings.hpp"
+#include "partreg/core/setting_option.hpp"
 
 namespace partreg::core {
 
-/// One registration setting.
-struct RegistrationOption {
-  std::string name;        ///< "restarts": --restarts, restarts=N, restarts=
-  std::string value_name;  ///< what the value looks like in help: "N", "X,Y,Z", "holistic|partwise|hol+part"
-  std::string help;        ///< one line, with units
-  bool is_flag = false;    ///< a switch: "true"/"false" (a command-line flag takes no value)
-  std::function<void(RegistrationSettings&, const std::string&)> set;  ///< parses; UsageError on a bad value
-  std::function<std::string(const RegistrationSettings&)> get;         ///< the value as `set` reads it
-};
+/// One registration setting (setting_option.hpp).
+using RegistrationOption = SettingOption<RegistrationSettings>;
 
 /// Every registration option, in the order help lists them.
 const std::vector<RegistrationOption>& registration_options();

@@ -30,6 +30,7 @@ struct TrainingJob {
   std::string model_path;         ///< where the model is written (atomically)
   std::string labelled_instance;  ///< stem of the mesh being labelled; empty when none is loaded
   io::PartLabels labels;          ///< its labels, one per face
+  core::TrainingSettings settings;  ///< the training options (core/training_options.hpp); the canonical is set here
 
   /// Reads the dataset and trains; when the labelled mesh is one of the dataset's instances it becomes the
   /// canonical with these labels (every face must have a part, else UsageError). Writes the model and

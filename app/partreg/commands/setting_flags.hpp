@@ -1,14 +1,16 @@
 #pragma once
 /// \file
-/// The command line's face of the registration options (core/registration_options.hpp) and of the thread
-/// budget: every command that registers adds them here, so `register`, `eval` and `figure compare` take the
-/// same flags with the same defaults.
+/// The command line's face of the option tables (core/registration_options.hpp, core/training_options.hpp)
+/// and of the thread budget: every command that registers or trains adds its flags here, so `register`,
+/// `eval` and `figure compare` take the same registration flags, and `train` and `eval` the same training
+/// flags, with the same defaults.
 
 #include <CLI/CLI.hpp>
 #include <set>
 #include <string>
 
 #include "partreg/core/registration_settings.hpp"
+#include "partreg/core/training.hpp"
 
 namespace partreg::app {
 
@@ -17,6 +19,10 @@ namespace partreg::app {
 /// a UsageError naming the flag.
 void add_registration_flags(CLI::App* command, core::RegistrationSettings& settings,
                             const std::set<std::string>& skip = {});
+
+/// Adds `--NAME` for every training option except those in `skip`, as add_registration_flags does.
+void add_training_flags(CLI::App* command, core::TrainingSettings& settings,
+                        const std::set<std::string>& skip = {});
 
 /// Adds `--threads N` (0 = all cores): the command's thread budget (core/parallel.hpp).
 void add_threads_flag(CLI::App* command, int& threads);

@@ -1,14 +1,15 @@
-#include "partreg/commands/registration_flags.hpp"
+#include "partreg/commands/setting_flags.hpp"
 
 #include "partreg/core/errors.hpp"
 #include "partreg/core/registration_options.hpp"
+#include "partreg/core/training_options.hpp"
 
 namespace partreg::app {
 namespace {
 
 // Runs `set` and puts the flag's name before a bad value's message.
-void set_naming_flag(const core::RegistrationOption& option, core::RegistrationSettings& settings,
-                     const std::string& value) {
+template <class Settings>
+void set_naming_flag(const core::SettingOption<Settings>& option, Settings& settings, const std::string& value) {
   try {
     option.set(settings, value);
   } catch (const UsageError& error) {
@@ -16,12 +17,11 @@ void set_naming_flag(const core::RegistrationOption& option, core::RegistrationS
   }
 }
 
-}  // namespace
-
-void add_registration_flags(CLI::App* command, core::RegistrationSettings& settings,
-                            const std::set<std::string>& skip) {
-  const core::RegistrationSettings defaults;
-  for (const core::RegistrationOption& option : core::registration_options()) {
+template <class Settings>
+void add_flags(CLI::App* command, const std::vector<core::SettingOption<Settings>>& options, Settings& settings,
+               const std::set<std::string>& skip) {
+  const Settings defaults;
+  for (const core::SettingOption<Settings>& option : options) {
     if (skip.count(option.name)) continue;
     const std::string flag = "--" + option.name;
     if (option.is_flag) {  // a flag turns on what is off by default, and --no-NAME off what is on
@@ -34,11 +34,21 @@ void add_registration_flags(CLI::App* command, core::RegistrationSettings& setti
     }
     command
         ->add_option_function<std::string>(
-            flag,
-            [&settings, &option](const std::string& value) { set_naming_flag(option, settings, value); },
+            flag, [&settings, &option](const std::string& value) { set_naming_flag(option, settings, value); },
             option.help + " (default " + option.get(defaults) + ")")
         ->type_name(option.value_name);
   }
+}
+
+}  // namespace
+
+void add_registration_flags(CLI::App* command, core::RegistrationSettings& settings,
+                            const std::set<std::string>& skip) {
+  add_flags(command, core::registration_options(), settings, skip);
+}
+
+void add_training_flags(CLI::App* command, core::TrainingSettings& settings, const std::set<std::string>& skip) {
+  add_flags(command, core::training_options(), settings, skip);
 }
 
 void add_threads_flag(CLI::App* command, int& threads) {

@@ -1,0 +1,66 @@
+#include "partreg/core/training_options.hpp"
+
+#include "option_builders.hpp"
+
+namespace partreg::core {
+namespace {
+
+using Make = detail::OptionOn<TrainingSettings>;
+
+TrainingOption up_axis() {
+  return {"up",
+          "X,Y,Z",
+          "the category's up axis in its data frame, kept in the model (registration turns about it; z for the "
+          "drills)",
+          false,
+          [](TrainingSettings& s, const std::string& v) {
+            const Eigen::Vector3d up = detail::finite_vector(v, "up");
+            if (!(up.norm() > 1e-12)) throw UsageError("up axis " + v + " has zero length");
+            s.up = up;
+          },
+          [](const TrainingSettings& s) { return detail::vector_text(s.up); }};
+}
+
+std::vector<TrainingOption> make_options() {
+  return {
+      Make::whole("latent", "dimensions per shape space (at most one fewer than the instances)", 1, 1000,
+                  [](auto& s) -> auto& { return s.latent_dimensions; }),
+      Make::whole("points", "canonical points M (farthest-point sample of the canonical instance)", 10, 1000000,
+                  [](auto& s) -> auto& { return s.canonical_points; }),
+      Make::whole("part-points", "floor of canonical points per part (0: none)", 0, 1000000,
+                  [](auto& s) -> auto& { return s.min_part_points; }),
+      Make::whole("target-points", "instance points each training CPD registers onto (farthest-point sample)",
+                  10, 1000000, [](auto& s) -> auto& { return s.target_points; }),
+      Make::real("seam-band",
+                 "band (normalised length) within which part fields are refitted to meet at seams (0: the "
+                 "part CPDs' own fields)",
+                 0.0, 1.0, [](auto& s) -> auto& { return s.seam_band; }),
+      Make::real("beta", "CPD kernel width (normalised length)", 1e-3, 10.0,
+                 [](auto& s) -> auto& { return s.beta; }),
+      Make::real("lambda", "CPD smoothness weight", 1e-6, 1e6, [](auto& s) -> auto& { return s.lambda; }),
+      Make::real("outlier-weight", "CPD's outlier share w (clean sampled surfaces have few outliers)", 0.0, 0.99,
+                 [](auto& s) -> auto& { return s.outlier_weight; }),
+      Make::whole("cpd-iterations", "CPD iterations per registration at most", 1, 100000,
+                  [](auto& s) -> auto& { return s.max_iterations; }),
+      up_axis(),
+  };
+}
+
+}  // namespace
+
+const std::vector<TrainingOption>& training_options() {
+  static const std::vector<TrainingOption> options = make_options();
+  return options;
+}
+
+const TrainingOption& training_option(const std::string& name) {
+  return find_option(training_options(), name, "training");
+}
+
+std::vector<std::pair<std::string, std::string>> training_option_values(const TrainingSettings& settings) {
+  return option_values(training_options(), settings);
+}
+
+void validate(const TrainingSettings& settings) { check_options(training_options(), settings); }
+
+}  // namespace partreg::core
