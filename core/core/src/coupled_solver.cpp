@@ -3,8 +3,10 @@
 #include <ceres/ceres.h>
 #include <ceres/rotation.h>
 
+#include <array>
 #include <chrono>
 #include <cmath>
+#include <memory>
 
 #include "moment_cost.hpp"
 #include "partreg/core/gaussian_kernel.hpp"
@@ -101,17 +103,6 @@ struct SeamSide {
   Points rest;            // N x 3
   Eigen::MatrixXd basis;  // 3N x q, row 3 i + a: component a at point i per unit of each latent
   Eigen::Vector3d centre;
-
-  template <typename T>
-  void move(int i, const T* rotation, const T* translation, const T* latent, T* out) const {
-    T v[3];
-    for (int a = 0; a < 3; ++a) {
-      v[a] = T(rest(i, a));
-      for (Eigen::Index k = 0; k < basis.cols(); ++k) v[a] += basis(3 * i + a, k) * latent[k];
-    }
-    ceres::AngleAxisRotatePoint(rotation, v, out);
-    for (int a = 0; a < 3; ++a) out[a] += centre[a] + translation[a];
-  }
 };
 
 SeamSide seam_side(const ShapeSpace& space, const Points& z, const Eigen::Vector3d& centre) {
@@ -130,22 +121,75 @@ SeamSide seam_side(const ShapeSpace& space, const Points& z, const Eigen::Vector
   return side;
 }
 
-// sqrt(seam_weight / all seam points) (m_a(z) - m_b(z)) at the seam points of one pair of parts. Parameter
-// blocks: part a's offset rotation, translation and latent, then part b's.
-struct SeamCost {
-  const SeamSide *a, *b;  // owned by the Seam, which outlives the problem
-  double root_weight;
+// An offset rotation R(r) (angle-axis r) and its derivative along each component of r, through Ceres's own
+// conversion so that R matches the data term's offset pose.
+struct Rotation {
+  Eigen::Matrix3d matrix;
+  std::array<Eigen::Matrix3d, 3> derivative;
+  explicit Rotation(const double* angle_axis) {
+    using Jet = ceres::Jet<double, 3>;
+    const Jet r[3] = {Jet(angle_axis[0], 0), Jet(angle_axis[1], 1), Jet(angle_axis[2], 2)};
+    Jet R[9];
+    ceres::AngleAxisToRotationMatrix(r, ceres::RowMajorAdapter3x3(R));
+    for (int i = 0; i < 3; ++i)
+      for (int j = 0; j < 3; ++j) {
+        matrix(i, j) = R[3 * i + j].a;
+        for (int k = 0; k < 3; ++k) derivative[static_cast<std::size_t>(k)](i, j) = R[3 * i + j].v[k];
+      }
+  }
+};
 
-  template <typename T>
-  bool operator()(T const* const* p, T* residuals) const {
-    for (Eigen::Index i = 0; i < a->rest.rows(); ++i) {
-      T on_a[3], on_b[3];
-      a->move(static_cast<int>(i), p[0], p[1], p[2], on_a);
-      b->move(static_cast<int>(i), p[3], p[4], p[5], on_b);
-      for (int c = 0; c < 3; ++c) residuals[3 * i + c] = root_weight * (on_a[c] - on_b[c]);
+// sqrt(seam_weight / all seam points) (m_a(z) - m_b(z)) at the seam points of one pair of parts, with exact
+// derivatives (the motion is linear in the latent and the translation; the rotation's derivative comes once
+// per evaluation from Rotation). Parameter blocks: part a's offset rotation, translation and latent, then
+// part b's.
+class SeamCost : public ceres::CostFunction {
+ public:
+  SeamCost(std::shared_ptr<const SeamSide> a, std::shared_ptr<const SeamSide> b, double root_weight)
+      : a_(std::move(a)), b_(std::move(b)), root_weight_(root_weight) {
+    for (const SeamSide* side : {a_.get(), b_.get()})
+      for (const auto size : {Eigen::Index{3}, Eigen::Index{3}, side->basis.cols()})
+        mutable_parameter_block_sizes()->push_back(static_cast<int>(size));
+    set_num_residuals(static_cast<int>(3 * a_->rest.rows()));
+  }
+
+  bool Evaluate(double const* const* p, double* residuals, double** jacobians) const override {
+    const Eigen::Index n = a_->rest.rows();
+    Eigen::Map<Eigen::VectorXd> r(residuals, 3 * n);
+    r.setZero();
+    const SeamSide* sides[2] = {a_.get(), b_.get()};
+    for (int s = 0; s < 2; ++s) {
+      const SeamSide& side = *sides[s];
+      const double sign = s == 0 ? root_weight_ : -root_weight_;
+      const Rotation rotation(p[3 * s]);
+      const Eigen::Map<const Eigen::Vector3d> translation(p[3 * s + 1]);
+      const Eigen::Map<const Eigen::VectorXd> latent(p[3 * s + 2], side.basis.cols());
+      double* const* J = jacobians ? jacobians + 3 * s : nullptr;
+      for (Eigen::Index i = 0; i < n; ++i) {
+        const Eigen::Vector3d v = side.rest.row(i).transpose() + side.basis.middleRows<3>(3 * i) * latent;
+        r.segment<3>(3 * i) += sign * (rotation.matrix * v + side.centre + translation);
+        if (!J) continue;
+        if (J[0]) {
+          Eigen::Map<Eigen::Matrix<double, Eigen::Dynamic, 3, Eigen::RowMajor>> block(J[0], 3 * n, 3);
+          for (int k = 0; k < 3; ++k)
+            block.block<3, 1>(3 * i, k) = sign * rotation.derivative[static_cast<std::size_t>(k)] * v;
+        }
+        if (J[1]) {
+          Eigen::Map<Eigen::Matrix<double, Eigen::Dynamic, 3, Eigen::RowMajor>> block(J[1], 3 * n, 3);
+          block.block<3, 3>(3 * i, 0) = sign * Eigen::Matrix3d::Identity();
+        }
+        if (J[2]) {
+          Eigen::Map<RowMajor> block(J[2], 3 * n, side.basis.cols());
+          block.middleRows<3>(3 * i) = sign * rotation.matrix * side.basis.middleRows<3>(3 * i);
+        }
+      }
     }
     return true;
   }
+
+ private:
+  std::shared_ptr<const SeamSide> a_, b_;
+  double root_weight_;
 };
 
 // What the solver knows about each part space.
@@ -173,7 +217,7 @@ Points seam_points(const ShapeSpace& a, const ShapeSpace& b, double radius) {
 // The seam points of two parts and each part's motion of them, computed once per registration.
 struct Seam {
   int a, b;  // indices into the parts
-  SeamSide on_a, on_b;
+  std::shared_ptr<const SeamSide> on_a, on_b;
 };
 
 std::vector<Seam> find_seams(const std::vector<Part>& parts, double radius) {
@@ -183,8 +227,8 @@ std::vector<Seam> find_seams(const std::vector<Part>& parts, double radius) {
       const Points points = seam_points(*parts[a].space, *parts[b].space, radius);
       if (points.rows() == 0) continue;
       seams.push_back({static_cast<int>(a), static_cast<int>(b),
-                       seam_side(*parts[a].space, points, parts[a].centre),
-                       seam_side(*parts[b].space, points, parts[b].centre)});
+                       std::make_shared<const SeamSide>(seam_side(*parts[a].space, points, parts[a].centre)),
+                       std::make_shared<const SeamSide>(seam_side(*parts[b].space, points, parts[b].centre))});
     }
   return seams;
 }
@@ -269,21 +313,18 @@ std::vector<Part> describe_parts(const CategoryModel& model, const Points& norma
 void add_seams(ceres::Problem& problem, const std::vector<Part>& parts, const std::vector<Seam>& seams,
                Unknowns& unknowns, double seam_weight) {
   Eigen::Index total = 0;
-  for (const Seam& seam : seams) total += seam.on_a.rest.rows();
+  for (const Seam& seam : seams) total += seam.on_a->rest.rows();
   if (total == 0 || seam_weight <= 0.0) return;
   for (const Seam& seam : seams) {
-    auto* cost = new ceres::DynamicAutoDiffCostFunction<SeamCost, 8>(
-        new SeamCost{&seam.on_a, &seam.on_b, std::sqrt(seam_weight / static_cast<double>(total))});
     std::vector<double*> blocks;
     for (const int p : {seam.a, seam.b}) {
       const auto index = static_cast<std::size_t>(p);
       for (double* block : {unknowns.offset_rotation[index].data(), unknowns.offset_translation[index].data(),
                             unknowns.latent[index].data()})
         blocks.push_back(block);
-      for (int size : {3, 3, parts[index].space->dimensions()}) cost->AddParameterBlock(size);
     }
-    cost->SetNumResiduals(static_cast<int>(3 * seam.on_a.rest.rows()));
-    problem.AddResidualBlock(cost, nullptr, blocks);
+    problem.AddResidualBlock(
+        new SeamCost(seam.on_a, seam.on_b, std::sqrt(seam_weight / static_cast<double>(total))), nullptr, blocks);
   }
 }
 
@@ -331,6 +372,13 @@ std::unique_ptr<ceres::CostFunction> make_part_data_cost(const ShapeSpace& space
                                                          const std::vector<WeightedPair>& pairs,
                                                          double prior_weight, const Eigen::Vector3d& centre) {
   return std::make_unique<OffsetPartCost>(space, pairs, prior_weight, centre);
+}
+
+std::unique_ptr<ceres::CostFunction> make_seam_cost(const ShapeSpace& a, const Eigen::Vector3d& centre_a,
+                                                    const ShapeSpace& b, const Eigen::Vector3d& centre_b,
+                                                    const Points& z, double root_weight) {
+  return std::make_unique<SeamCost>(std::make_shared<const SeamSide>(seam_side(a, z, centre_a)),
+                                    std::make_shared<const SeamSide>(seam_side(b, z, centre_b)), root_weight);
 }
 
 std::vector<SearchOutcome> solve_coupled(const CategoryModel& model, const Points& normals,

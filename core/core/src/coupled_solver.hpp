@@ -35,6 +35,13 @@ std::unique_ptr<ceres::CostFunction> make_part_data_cost(const ShapeSpace& space
                                                          const std::vector<WeightedPair>& pairs,
                                                          double prior_weight, const Eigen::Vector3d& centre);
 
+/// The seam term of parts a and b at the points `z` (normalised canonical frame), with exact derivatives:
+/// root_weight (m_a(z) - m_b(z)), three residuals per point. Parameter blocks: part a's offset rotation
+/// (angle-axis, 3), offset translation (3) and latent (q_a), then part b's. Exposed for its test.
+std::unique_ptr<ceres::CostFunction> make_seam_cost(const ShapeSpace& a, const Eigen::Vector3d& centre_a,
+                                                    const ShapeSpace& b, const Eigen::Vector3d& centre_b,
+                                                    const Points& z, double root_weight);
+
 /// Fits every part of `model` jointly, starting from the holistic fit `holistic` (its pose for the object,
 /// its deformation projected into each part's space for the latents, zero offsets). `normals`: outward
 /// normals of the holistic canonical points (used only with a viewpoint). Returns one outcome per part
