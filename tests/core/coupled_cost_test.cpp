@@ -6,6 +6,7 @@
 #include <random>
 
 #include "coupled_solver.hpp"
+#include "support/jacobian_check.hpp"
 
 namespace partreg::core::detail {
 namespace {
@@ -90,33 +91,7 @@ TEST(CoupledPartCost, JacobianMatchesCentralDifferences) {
   const Fixture f = random_part(30, 3, 120, 11);
   const auto cost = make_part_data_cost(f.space, f.pairs, 0.05, f.centre);
   Parameters p;
-  const int residuals = cost->num_residuals();
-  const std::vector<int> sizes = {4, 3, 1, 3, 3, 3};
-  std::vector<std::vector<double>> jacobians;
-  std::vector<double*> pointers;
-  for (int size : sizes) {
-    jacobians.emplace_back(static_cast<std::size_t>(residuals * size));
-    pointers.push_back(jacobians.back().data());
-  }
-  Eigen::VectorXd r(residuals);
-  std::vector<double*> blocks = p.blocks();
-  ASSERT_TRUE(cost->Evaluate(blocks.data(), r.data(), pointers.data()));
-  const double h = 1e-6;
-  for (std::size_t b = 0; b < sizes.size(); ++b)
-    for (int c = 0; c < sizes[b]; ++c) {
-      Eigen::VectorXd plus(residuals), minus(residuals);
-      const double kept = blocks[b][c];
-      blocks[b][c] = kept + h;
-      cost->Evaluate(blocks.data(), plus.data(), nullptr);
-      blocks[b][c] = kept - h;
-      cost->Evaluate(blocks.data(), minus.data(), nullptr);
-      blocks[b][c] = kept;
-      const Eigen::VectorXd numeric = (plus - minus) / (2.0 * h);
-      for (int i = 0; i < residuals; ++i)
-        EXPECT_NEAR(jacobians[b][static_cast<std::size_t>(i * sizes[b] + c)], numeric[i],
-                    1e-5 * (1.0 + std::abs(numeric[i])))
-            << "block " << b << " column " << c << " residual " << i;
-    }
+  testing::expect_jacobian_matches_central_differences(*cost, p.blocks());
 }
 
 // Part p's motion of z before the object pose, from the definition: R_p (z + G(z, C_p) W(x_p) - c_p) + c_p + d_p.
@@ -171,33 +146,8 @@ TEST(CoupledSeamCost, JacobianMatchesCentralDifferences) {
     Eigen::Vector3d ra = turn * Eigen::Vector3d(0.3, -0.2, 0.1), da(0.02, 0.01, -0.03);
     Eigen::Vector3d rb = turn * Eigen::Vector3d(-0.1, 0.25, 0.05), db(0.0, -0.02, 0.05);
     Eigen::VectorXd xa = Eigen::Vector3d(0.5, -0.3, 0.2), xb = Eigen::Vector2d(-0.4, 0.6);
-    std::vector<double*> blocks = {ra.data(), da.data(), xa.data(), rb.data(), db.data(), xb.data()};
-    const std::vector<int> sizes = {3, 3, 3, 3, 3, 2};
-    const int residuals = cost->num_residuals();
-    std::vector<std::vector<double>> jacobians;
-    std::vector<double*> pointers;
-    for (int size : sizes) {
-      jacobians.emplace_back(static_cast<std::size_t>(residuals * size));
-      pointers.push_back(jacobians.back().data());
-    }
-    Eigen::VectorXd r(residuals);
-    ASSERT_TRUE(cost->Evaluate(blocks.data(), r.data(), pointers.data()));
-    const double h = 1e-6;
-    for (std::size_t b = 0; b < sizes.size(); ++b)
-      for (int c = 0; c < sizes[b]; ++c) {
-        Eigen::VectorXd plus(residuals), minus(residuals);
-        const double kept = blocks[b][c];
-        blocks[b][c] = kept + h;
-        cost->Evaluate(blocks.data(), plus.data(), nullptr);
-        blocks[b][c] = kept - h;
-        cost->Evaluate(blocks.data(), minus.data(), nullptr);
-        blocks[b][c] = kept;
-        const Eigen::VectorXd numeric = (plus - minus) / (2.0 * h);
-        for (int i = 0; i < residuals; ++i)
-          EXPECT_NEAR(jacobians[b][static_cast<std::size_t>(i * sizes[b] + c)], numeric[i],
-                      1e-5 * (1.0 + std::abs(numeric[i])))
-              << "turn " << turn << " block " << b << " column " << c << " residual " << i;
-      }
+    testing::expect_jacobian_matches_central_differences(
+        *cost, {ra.data(), da.data(), xa.data(), rb.data(), db.data(), xb.data()}, "turn " + std::to_string(turn));
   }
 }
 

@@ -1,6 +1,7 @@
 // The registration step's cost in moments (core/core/src/moment_cost.hpp) against the sum it replaces:
 // sum_i w_i |s R (a_i + K_i x) + t - o_i|^2 plus the prior, and its Jacobian against central differences.
 #include "moment_cost.hpp"
+#include "support/jacobian_check.hpp"
 
 #include <gtest/gtest.h>
 
@@ -99,33 +100,7 @@ TEST(MomentCost, JacobianMatchesCentralDifferences) {
   const MomentCost cost(f.space, f.pairs, 0.05);
   Parameters p;
   p.latent = Eigen::Vector4d(0.5, -0.3, 0.2, 1.0);
-  const int residuals = cost.num_residuals();
-  const std::vector<int> sizes = {4, 3, 1, 4};
-  std::vector<std::vector<double>> jacobians;
-  std::vector<double*> pointers;
-  for (int size : sizes) {
-    jacobians.emplace_back(static_cast<std::size_t>(residuals * size));
-    pointers.push_back(jacobians.back().data());
-  }
-  Eigen::VectorXd r(residuals);
-  std::vector<double*> blocks = p.blocks();
-  ASSERT_TRUE(cost.Evaluate(blocks.data(), r.data(), pointers.data()));
-  const double h = 1e-6;
-  for (std::size_t b = 0; b < sizes.size(); ++b)
-    for (int c = 0; c < sizes[b]; ++c) {
-      Eigen::VectorXd plus(residuals), minus(residuals);
-      const double kept = blocks[b][c];
-      blocks[b][c] = kept + h;
-      cost.Evaluate(blocks.data(), plus.data(), nullptr);
-      blocks[b][c] = kept - h;
-      cost.Evaluate(blocks.data(), minus.data(), nullptr);
-      blocks[b][c] = kept;
-      const Eigen::VectorXd numeric = (plus - minus) / (2.0 * h);
-      for (int i = 0; i < residuals; ++i)
-        EXPECT_NEAR(jacobians[b][static_cast<std::size_t>(i * sizes[b] + c)], numeric[i],
-                    1e-5 * (1.0 + std::abs(numeric[i])))
-            << "block " << b << " column " << c << " residual " << i;
-    }
+  testing::expect_jacobian_matches_central_differences(cost, p.blocks());
 }
 
 }  // namespace

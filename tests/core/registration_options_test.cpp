@@ -2,10 +2,10 @@
 
 #include <gtest/gtest.h>
 
-#include <fstream>
 #include <set>
 
 #include "partreg/core/errors.hpp"
+#include "support/option_docs.hpp"
 
 namespace partreg::core {
 namespace {
@@ -106,15 +106,8 @@ TEST(RegistrationOptions, ValidateRefusesSettingsBuiltInCode) {
 
 // docs/registration.md's table of settings lists exactly the declared options.
 TEST(RegistrationOptions, TheDocsTableListsEveryOption) {
-  std::ifstream file(std::string(PARTREG_SOURCE_DIR) + "/docs/registration.md");
-  ASSERT_TRUE(file) << "docs/registration.md not found";
-  std::set<std::string> documented;
-  bool in_table = false;
-  for (std::string line; std::getline(file, line);) {
-    if (line.rfind("| name | value | default | meaning |", 0) == 0) in_table = true;
-    if (in_table && line.empty()) break;
-    if (in_table && line.rfind("| `", 0) == 0) documented.insert(line.substr(3, line.find('`', 3) - 3));
-  }
+  const std::set<std::string> documented = testing::documented_options("registration.md");
+  ASSERT_FALSE(documented.empty()) << "no table of settings in docs/registration.md";
   std::set<std::string> declared;
   for (const RegistrationOption& option : registration_options()) declared.insert(option.name);
   EXPECT_EQ(documented, declared);
