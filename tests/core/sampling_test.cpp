@@ -104,6 +104,9 @@ TEST(FarthestPointSampling, AllRowsAtTheSizeAndAnErrorAbove) {
   EXPECT_TRUE(farthest_point_indices(points, 0).empty());
   EXPECT_THROW(farthest_point_indices(points, 5, 50), UsageError);
   EXPECT_THROW(farthest_point_indices(points, 5, -1), UsageError);
+  Points with_nan = points;
+  with_nan(7, 1) = std::numeric_limits<double>::quiet_NaN();
+  EXPECT_THROW(farthest_point_indices(with_nan, 50), InputError);  // not a crash in the heap or the tree
 }
 
 /// 30 distinct points, each three times over.

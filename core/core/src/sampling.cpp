@@ -53,6 +53,7 @@ std::vector<int> farthest_point_indices(const Points& points, std::size_t count,
                      std::to_string(points.rows()));
   if (count == 0) return {};
   if (first < 0 || first >= points.rows()) throw UsageError("farthest-point sampling: bad first index");
+  if (!points.allFinite()) throw InputError("farthest-point sampling: a point is not finite (NaN or infinite)");
   // Choosing a point can only lower the distance of points closer to it than the farthest distance left
   // (the chosen point's own), so each step updates just the points within that radius (a KD-tree query)
   // instead of all of them, and a max-heap keeps the farthest point (stale entries are skipped when they

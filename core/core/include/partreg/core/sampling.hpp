@@ -17,8 +17,9 @@ Cloud sample_surface(const Mesh& mesh, std::size_t count, std::uint64_t seed);
 
 /// Farthest-point downsampling: `count` row indices, starting at row `first`, each next point the one
 /// farthest from those already chosen. Chosen over a voxel grid because it keeps thin parts (handles,
-/// spouts, triggers) covered whatever their size, and returns exactly `count` points. O(N count).
-/// Throws InputError when the set has fewer than `count` points.
+/// spouts, triggers) covered whatever their size, and returns exactly `count` points. Each pick updates only
+/// the points within reach of it (a KD-tree query), so it costs far less than O(N count) on a surface; ties go
+/// to the lowest row. Throws InputError when the set has fewer than `count` points or a non-finite point.
 std::vector<int> farthest_point_indices(const Points& points, std::size_t count, int first = 0);
 
 /// One point per occupied voxel of edge `voxel_size` (the point nearest to the voxel's centroid, so every
