@@ -54,11 +54,9 @@ Eigen::MatrixXd step_moments(const ShapeSpace& space, const std::vector<Weighted
 // degenerate): Q = P^T L D L^T P, so S = sqrt(D) L^T P.
 Eigen::MatrixXd square_root(const Eigen::MatrixXd& Q) {
   const Eigen::LDLT<Eigen::MatrixXd> ldlt(Q);
-  const Eigen::Index size = Q.rows();
-  Eigen::MatrixXd permutation = Eigen::MatrixXd::Identity(size, size);
-  permutation = ldlt.transpositionsP() * permutation;
   const Eigen::VectorXd root_d = ldlt.vectorD().cwiseMax(0.0).cwiseSqrt();
-  return root_d.asDiagonal() * Eigen::MatrixXd(ldlt.matrixU()) * permutation;
+  // Times P as column swaps (the transpositions themselves), not as a product with a dense permutation matrix.
+  return (root_d.asDiagonal() * Eigen::MatrixXd(ldlt.matrixU())) * ldlt.transpositionsP().transpose();
 }
 
 // d R / d(x, y, z, w) for R = I + 2 w [v]x + 2 [v]x^2 (a unit quaternion's matrix, as Eigen computes it).
