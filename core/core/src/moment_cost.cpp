@@ -34,7 +34,8 @@ Eigen::MatrixXd step_moments(const ShapeSpace& space, const std::vector<Weighted
     target_sum += pair.weight * pair.target;
     target_norms += pair.weight * pair.target.squaredNorm();
   }
-  const Eigen::MatrixXd gram = weighted_p.transpose() * weighted_p;   // G
+  Eigen::MatrixXd gram = Eigen::MatrixXd::Zero(block, block);           // G, its upper half: Q reads no more
+  gram.selfadjointView<Eigen::Upper>().rankUpdate(weighted_p.transpose());
   const Eigen::VectorXd sum_p = weighted_p.transpose() * root;        // h
   const Eigen::MatrixXd cross = weighted_p.transpose() * weighted_o;  // g, one column per component a
   Eigen::MatrixXd Q = Eigen::MatrixXd::Zero(size, size);
