@@ -13,6 +13,6 @@ cmake -S . -B build-sanitize -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo -DPARTRE
   -DPARTREG_BUILD_BENCHMARKS=OFF >/dev/null
 cmake --build build-sanitize --target partreg_sanitizer_suite --parallel "$(nproc)"
 (cd build-sanitize && ASAN_OPTIONS=detect_leaks=1 LSAN_OPTIONS="suppressions=$PWD/../scripts/lsan.supp" \
-  ctest --output-on-failure --label-regex '^(core|io|eval)$' --label-exclude '^data$' --timeout 900)
+  ctest --output-on-failure --label-regex '^(core|io|eval)$' --label-exclude '^data$' --parallel 2 --timeout 900)
 
 bash scripts/run_fuzz.sh
