@@ -7,19 +7,12 @@
 #include <set>
 
 #include "partreg/core/errors.hpp"
-#include "support/option_docs.hpp"
+#include "support/option_tables.hpp"
 
 namespace partreg::core {
 namespace {
 
-std::string usage_message(const std::function<void()>& call) {
-  try {
-    call();
-  } catch (const UsageError& error) {
-    return error.what();
-  }
-  return "";
-}
+using testing::usage_message;
 
 TEST(TrainingOptions, EveryOptionRoundTripsItsDefaultAndAChangedValue) {
   const TrainingSettings defaults;
