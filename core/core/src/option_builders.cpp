@@ -46,6 +46,12 @@ Eigen::Vector3d finite_vector(const std::string& text, const std::string& what) 
   return v;
 }
 
+Eigen::Vector3d up_axis_in(const std::string& text) {
+  const Eigen::Vector3d up = finite_vector(text, "up");
+  if (!(up.norm() > 1e-12)) throw UsageError("up axis " + text + " has zero length");
+  return up;
+}
+
 std::string vector_text(const Eigen::Vector3d& v) {
   return text_of(v.x()) + "," + text_of(v.y()) + "," + text_of(v.z());
 }

@@ -21,6 +21,9 @@ int integer_in(const std::string& text, const std::string& what, int low, int hi
 bool boolean(const std::string& text, const std::string& what);
 /// "X,Y,Z" with finite components; UsageError naming `what` otherwise.
 Eigen::Vector3d finite_vector(const std::string& text, const std::string& what);
+/// An up axis: finite_vector's "X,Y,Z" of non-zero length; UsageError otherwise. Registration's and
+/// training's up options both read it so.
+Eigen::Vector3d up_axis_in(const std::string& text);
 /// "X,Y,Z" as finite_vector reads it back exactly.
 std::string vector_text(const Eigen::Vector3d& v);
 

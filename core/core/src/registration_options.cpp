@@ -22,9 +22,7 @@ RegistrationOption up_axis() {
           false,
           [](RegistrationSettings& s, const std::string& v) {
             if (v == "model") return s.initialisation.up.reset();
-            const Eigen::Vector3d up = finite_vector(v, "up");
-            if (up.norm() < 1e-12) throw UsageError("up axis " + v + " has zero length");
-            s.initialisation.up = up;
+            s.initialisation.up = detail::up_axis_in(v);
           },
           [](const RegistrationSettings& s) {
             return s.initialisation.up ? vector_text(*s.initialisation.up) : std::string("model");

@@ -13,11 +13,7 @@ TrainingOption up_axis() {
           "the category's up axis in its data frame, kept in the model (registration turns about it; z for the "
           "drills)",
           false,
-          [](TrainingSettings& s, const std::string& v) {
-            const Eigen::Vector3d up = detail::finite_vector(v, "up");
-            if (!(up.norm() > 1e-12)) throw UsageError("up axis " + v + " has zero length");
-            s.up = up;
-          },
+          [](TrainingSettings& s, const std::string& v) { s.up = detail::up_axis_in(v); },
           [](const TrainingSettings& s) { return detail::vector_text(s.up); }};
 }
 
