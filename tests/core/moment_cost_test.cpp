@@ -74,7 +74,7 @@ double moment_cost(const MomentCost& cost, Parameters& p) {
 TEST(MomentCost, EqualsTheSumOverThePairs) {
   const Fixture f = random_step(60, 5, 400, 7);
   const MomentCost cost(f.space, f.pairs, 0.01);
-  EXPECT_EQ(cost.num_residuals(), 9 * 6 + 4 + 5);  // whatever the number of pairs
+  EXPECT_EQ(cost.num_residuals(), 3 * (3 * 6 + 2) + 5);  // whatever the number of pairs
   Parameters p;
   p.latent = Eigen::VectorXd::LinSpaced(5, -1.0, 1.5);
   const double expected = explicit_cost(f, p, 0.01);

@@ -10,45 +10,52 @@ namespace {
 
 using RowMajor = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;
 
-// Q = sum_i w_i sum_a f_ia f_ia^T over the pairs' rows f_ia (see the header), built from three moments of the
-// vectors p_i = vec(P_i) (index b (q + 1) + k): G = sum w p p^T, h = sum w p and g = sum w p o^T.
-Eigen::MatrixXd step_moments(const ShapeSpace& space, const std::vector<WeightedPair>& pairs) {
-  const int n = space.dimensions() + 1, block = 3 * n, size = 9 * n + 4;
-  RowMajor weighted_p(static_cast<Eigen::Index>(pairs.size()), block);  // rows sqrt(w_i) p_i
-  Eigen::MatrixXd weighted_o(static_cast<Eigen::Index>(pairs.size()), 3);
-  Eigen::VectorXd root(static_cast<Eigen::Index>(pairs.size()));
-  double total = 0.0, target_norms = 0.0;
-  Eigen::Vector3d target_sum = Eigen::Vector3d::Zero();
-  for (std::size_t i = 0; i < pairs.size(); ++i) {
-    const WeightedPair& pair = pairs[i];
+// The Q_a of the header from three moments of the vectors p_m = vec(P_m) (index b (q + 1) + k): G = sum w p p^T
+// and h = sum w p, shared by the three components, and g_a = sum w p o_a, which is not:
+//   Q_a = [G, h, -g_a; h^T, sum w, -sum w o_a; -g_a^T, -sum w o_a, sum w o_a^2].
+// Many pairs share a canonical row (every observed point has one), so the pairs are first summed per row:
+// the moments then cost one outer product per row used instead of one per pair.
+std::array<Eigen::MatrixXd, 3> step_moments(const ShapeSpace& space, const std::vector<WeightedPair>& pairs) {
+  const int n = space.dimensions() + 1, block = 3 * n, t = block, constant = block + 1;
+  Eigen::VectorXd row_weight = Eigen::VectorXd::Zero(space.canonical.rows());
+  Points row_targets = Points::Zero(space.canonical.rows(), 3);  // sum of w o over the row's pairs
+  Eigen::Vector3d target_squares = Eigen::Vector3d::Zero();
+  for (const WeightedPair& pair : pairs) {
+    row_weight[pair.row] += pair.weight;
+    row_targets.row(pair.row) += pair.weight * pair.target.transpose();
+    target_squares += pair.weight * pair.target.cwiseAbs2();
+  }
+  std::vector<int> rows;
+  for (Eigen::Index m = 0; m < row_weight.size(); ++m)
+    if (row_weight[m] > 0.0) rows.push_back(static_cast<int>(m));
+  RowMajor weighted_p(static_cast<Eigen::Index>(rows.size()), block);  // sqrt(W_m) p_m
+  Eigen::MatrixXd weighted_o(static_cast<Eigen::Index>(rows.size()), 3);  // (sum w o) / sqrt(W_m)
+  Eigen::VectorXd root(static_cast<Eigen::Index>(rows.size()));
+  for (std::size_t i = 0; i < rows.size(); ++i) {
     const auto r = static_cast<Eigen::Index>(i);
-    const Eigen::Index row = 3 * pair.row;
-    root[r] = std::sqrt(pair.weight);
+    const int m = rows[i];
+    root[r] = std::sqrt(row_weight[m]);
     for (int b = 0; b < 3; ++b) {
-      weighted_p(r, b * n) =
-          root[r] * (space.canonical(pair.row, b) + space.kernel_mean[row + b]);  // u_0 = 1: the rest shape
-      for (int k = 1; k < n; ++k) weighted_p(r, b * n + k) = root[r] * space.kernel_basis(row + b, k - 1);
+      weighted_p(r, b * n) = root[r] * (space.canonical(m, b) + space.kernel_mean[3 * m + b]);  // u_0 = 1: rest
+      for (int k = 1; k < n; ++k) weighted_p(r, b * n + k) = root[r] * space.kernel_basis(3 * m + b, k - 1);
     }
-    weighted_o.row(r) = root[r] * pair.target.transpose();
-    total += pair.weight;
-    target_sum += pair.weight * pair.target;
-    target_norms += pair.weight * pair.target.squaredNorm();
+    weighted_o.row(r) = row_targets.row(m) / root[r];
   }
-  Eigen::MatrixXd gram = Eigen::MatrixXd::Zero(block, block);           // G, its upper half: Q reads no more
-  gram.selfadjointView<Eigen::Upper>().rankUpdate(weighted_p.transpose());
-  const Eigen::VectorXd sum_p = weighted_p.transpose() * root;        // h
+  Eigen::MatrixXd shared = Eigen::MatrixXd::Zero(block + 2, block + 2);  // the upper half: Q_a reads no more
+  shared.topLeftCorner(block, block).selfadjointView<Eigen::Upper>().rankUpdate(weighted_p.transpose());
+  shared.col(t).head(block) = weighted_p.transpose() * root;  // h
+  shared(t, t) = row_weight.sum();
   const Eigen::MatrixXd cross = weighted_p.transpose() * weighted_o;  // g, one column per component a
-  Eigen::MatrixXd Q = Eigen::MatrixXd::Zero(size, size);
-  const int t = 9 * n, constant = 9 * n + 3;
+  const Eigen::Vector3d target_sum = row_targets.colwise().sum().transpose();
+  std::array<Eigen::MatrixXd, 3> Q;
   for (int a = 0; a < 3; ++a) {
-    Q.block(a * block, a * block, block, block) = gram;
-    Q.block(a * block, t + a, block, 1) = sum_p;
-    Q.block(a * block, constant, block, 1) = -cross.col(a);
-    Q(t + a, t + a) = total;
-    Q(t + a, constant) = -target_sum[a];
+    Eigen::MatrixXd upper = shared;
+    upper.col(constant).head(block) = -cross.col(a);
+    upper(t, constant) = -target_sum[a];
+    upper(constant, constant) = target_squares[a];
+    Q[static_cast<std::size_t>(a)] = upper.selfadjointView<Eigen::Upper>();
   }
-  Q(constant, constant) = target_norms;
-  return Q.selfadjointView<Eigen::Upper>();
+  return Q;
 }
 
 // S with S^T S = Q, from a pivoted LDL^T (Q is only positive semi-definite when pairs are few or
@@ -80,12 +87,22 @@ std::array<Eigen::Matrix3d, 4> rotation_derivatives(const Eigen::Quaterniond& ro
   return derivatives;
 }
 
+// The a-th block of z_a (header): (M)_ab weights_k at index b (q + 1) + k, for b = 0..2 and k = 0..q.
+Eigen::VectorXd component_row(const Eigen::Matrix3d& M, int a, const Eigen::VectorXd& weights) {
+  const auto n = weights.size();
+  Eigen::VectorXd out(3 * n);
+  for (int b = 0; b < 3; ++b) out.segment(b * n, n) = M(a, b) * weights;
+  return out;
+}
+
 }  // namespace
 
 MomentCost::MomentCost(const ShapeSpace& space, const std::vector<WeightedPair>& pairs, double prior_weight)
-    : q_(space.dimensions()), factor_(square_root(step_moments(space, pairs))) {
+    : q_(space.dimensions()) {
+  const std::array<Eigen::MatrixXd, 3> moments = step_moments(space, pairs);
+  for (std::size_t a = 0; a < 3; ++a) factors_[a] = square_root(moments[a]);
   inverse_sd_ = (prior_weight / space.variances.array().max(1e-12)).sqrt().matrix();
-  set_num_residuals(static_cast<int>(factor_.rows()) + q_);
+  set_num_residuals(3 * static_cast<int>(factors_[0].rows()) + q_);
   *mutable_parameter_block_sizes() = {4, 3, 1, q_};
 }
 
@@ -94,57 +111,47 @@ bool MomentCost::Evaluate(double const* const* parameters, double* residuals, do
   const Eigen::Map<const Eigen::Vector3d> translation(parameters[1]);
   const double scale = parameters[2][0];
   const Eigen::Map<const Eigen::VectorXd> latent(parameters[3], q_);
-  const int n = q_ + 1, size = 9 * n + 4, t = 9 * n;
+  const int n = q_ + 1, block = 3 * n, width = block + 2, data = 3 * width;
   Eigen::VectorXd u(n);
   u << 1.0, latent;
   const Eigen::Matrix3d R = rotation.toRotationMatrix();
-  // y = [vec(s R u^T) ; t ; 1], the index of (s R)_ab u_k being a 3n + b n + k.
-  const auto fill = [&](const Eigen::Matrix3d& M, const Eigen::VectorXd& weights, double* out) {
-    for (int a = 0; a < 3; ++a)
-      for (int b = 0; b < 3; ++b)
-        for (int k = 0; k < n; ++k) out[a * 3 * n + b * n + k] = M(a, b) * weights[k];
-  };
-  Eigen::VectorXd y = Eigen::VectorXd::Zero(size);
-  fill(scale * R, u, y.data());
-  y.segment<3>(t) = translation;
-  y[size - 1] = 1.0;
-  Eigen::Map<Eigen::VectorXd>(residuals, factor_.rows()) = factor_ * y;
-  Eigen::Map<Eigen::VectorXd>(residuals + factor_.rows(), q_) = inverse_sd_.cwiseProduct(latent);
+  for (int a = 0; a < 3; ++a) {
+    Eigen::VectorXd z(width);
+    z << component_row(scale * R, a, u), translation[a], 1.0;
+    Eigen::Map<Eigen::VectorXd>(residuals + a * width, width) = factors_[static_cast<std::size_t>(a)] * z;
+  }
+  Eigen::Map<Eigen::VectorXd>(residuals + data, q_) = inverse_sd_.cwiseProduct(latent);
   if (!jacobians) return true;
-  const Eigen::Index data = factor_.rows();
-  // Each parameter's column of dy/dtheta, mapped through S; the prior rows depend on the latent only.
-  const auto block = [&](int index, int columns) {
+  // Each parameter's column of dz_a/dtheta, mapped through S_a; the prior rows depend on the latent only.
+  const auto jacobian = [&](int index, int columns) {
     Eigen::Map<RowMajor> J(jacobians[index], num_residuals(), columns);
     J.setZero();
     return J;
   };
-  Eigen::VectorXd column(size);
+  // Column c of a block: component a's rows are S_a's first 3 (q + 1) columns times dm_a.
+  const auto through_factor = [&](Eigen::Map<RowMajor>& J, int c, const Eigen::Matrix3d& M,
+                                  const Eigen::VectorXd& weights) {
+    for (int a = 0; a < 3; ++a)
+      J.col(c).segment(a * width, width) =
+          factors_[static_cast<std::size_t>(a)].leftCols(block) * component_row(M, a, weights);
+  };
   if (jacobians[0]) {
-    Eigen::Map<RowMajor> J = block(0, 4);
+    Eigen::Map<RowMajor> J = jacobian(0, 4);
     const auto derivatives = rotation_derivatives(Eigen::Quaterniond(rotation));
-    for (int c = 0; c < 4; ++c) {
-      column.setZero();
-      fill(scale * derivatives[static_cast<std::size_t>(c)], u, column.data());
-      J.col(c).head(data) = factor_ * column;
-    }
+    for (int c = 0; c < 4; ++c) through_factor(J, c, scale * derivatives[static_cast<std::size_t>(c)], u);
   }
   if (jacobians[1]) {
-    Eigen::Map<RowMajor> J = block(1, 3);
-    J.topRows(data) = factor_.middleCols(t, 3);
+    Eigen::Map<RowMajor> J = jacobian(1, 3);
+    for (int a = 0; a < 3; ++a)
+      J.col(a).segment(a * width, width) = factors_[static_cast<std::size_t>(a)].col(block);
   }
   if (jacobians[2]) {
-    Eigen::Map<RowMajor> J = block(2, 1);
-    column.setZero();
-    fill(R, u, column.data());
-    J.col(0).head(data) = factor_ * column;
+    Eigen::Map<RowMajor> J = jacobian(2, 1);
+    through_factor(J, 0, R, u);
   }
   if (jacobians[3]) {
-    Eigen::Map<RowMajor> J = block(3, q_);
-    for (int j = 0; j < q_; ++j) {
-      column.setZero();
-      fill(scale * R, Eigen::VectorXd::Unit(n, j + 1), column.data());
-      J.col(j).head(data) = factor_ * column;
-    }
+    Eigen::Map<RowMajor> J = jacobian(3, q_);
+    for (int j = 0; j < q_; ++j) through_factor(J, j, scale * R, Eigen::VectorXd::Unit(n, j + 1));
     J.bottomRows(q_) = inverse_sd_.asDiagonal();
   }
   return true;

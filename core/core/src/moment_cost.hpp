@@ -3,15 +3,17 @@
 //
 // With the correspondences and their weights fixed for the step, the step minimises
 //   E = sum_i w_i |s R (a_i + K_i x) + t - o_i|^2        (a_i: canonical + mean displacement, K_i: 3 x q)
-// Every residual is linear in y = [vec(s R [1; x]^T) ; t ; 1] (9 (q + 1) + 4 numbers): the a-th component of
-// s R P_i u (P_i = [a_i K_i], u = [1; x]) is sum_bk (s R)_ab u_k P_i(b, k). So E = y^T Q y with Q built once
-// per step from moments of the pairs, and the factor S of Q (S^T S = Q) gives residuals S y whose squared
-// norm is E exactly. Ceres then works on 9 (q + 1) + 4 residuals instead of three per pair: the same
+// The a-th component of a residual is linear in z_a = [vec(row a of s R times [1; x]^T) ; t_a ; 1]
+// (3 (q + 1) + 2 numbers): it is sum_bk (s R)_ab u_k P_i(b, k) + t_a - o_ia with P_i = [a_i K_i], u = [1; x].
+// So E = sum_a z_a^T Q_a z_a, each Q_a built once per step from moments of the pairs (the three share all
+// but their last column), and the factors S_a of Q_a (S_a^T S_a = Q_a) give residuals S_a z_a whose squared
+// norm is E exactly. Ceres then works on 3 (3 (q + 1) + 2) residuals instead of three per pair: the same
 // Gauss-Newton steps in exact arithmetic, at a cost that no longer grows with the number of pairs.
 
 #include <ceres/ceres.h>
 
 #include <Eigen/Core>
+#include <array>
 #include <vector>
 
 #include "partreg/core/shape_space.hpp"
@@ -26,7 +28,8 @@ struct WeightedPair {
 };
 
 /// Parameter blocks: rotation (Eigen quaternion coefficients x, y, z, w), translation (3), scale (1), latent
-/// (q). Residuals: the factor of the step's moments (9 (q + 1) + 4), then the prior sqrt(lambda) x_k / sd_k.
+/// (q). Residuals: per component a, the factor of its moments (3 (q + 1) + 2 each), then the prior
+/// sqrt(lambda) x_k / sd_k.
 class MomentCost : public ceres::CostFunction {
  public:
   MomentCost(const ShapeSpace& space, const std::vector<WeightedPair>& pairs, double prior_weight);
@@ -35,7 +38,7 @@ class MomentCost : public ceres::CostFunction {
 
  private:
   int q_;
-  Eigen::MatrixXd factor_;  // S, with S^T S = Q
+  std::array<Eigen::MatrixXd, 3> factors_;  // S_a, with S_a^T S_a = Q_a
   Eigen::VectorXd inverse_sd_;
 };
 
