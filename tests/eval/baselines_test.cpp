@@ -130,5 +130,43 @@ TEST(Baselines, TheOracleKeepsTheTemplateClosestToTheTruth) {
   EXPECT_GT(turned, 2 * scores[2].errors.symmetric_rms_per_diagonal);
 }
 
+// The true shape is the tested mug itself as M points from a sample other than the truth's, at the truth's
+// pose: the floor under every figure. Below every other baseline, above zero (its points are not the
+// truth's), and its reverse half grows as M shrinks (the truth is farther from the nearest of fewer points).
+TEST(Baselines, TheTrueShapeIsTheFloorAndFallsWithMorePoints) {
+  const std::vector<core::SyntheticInstance> mugs =
+      core::make_synthetic_category(core::SyntheticCategory::mug, 5, 11);
+  std::vector<core::TrainingInstance> training;
+  for (std::size_t i = 0; i + 1 < mugs.size(); ++i)
+    training.push_back({mugs[i].name, mug_points(mugs[i]), {}, {}, {}});
+  const auto reverse_of = [&](int canonical_points, std::vector<eval::BaselineScore>* out) {
+    core::TrainingSettings settings;
+    settings.canonical_points = canonical_points;
+    const core::CategoryModel model = core::train_category("mugs", training, {}, settings);
+    const core::Points truth_points =
+        core::sample_correspondences(core::SyntheticCategory::mug, mugs.back().shape_parameters, 4000, 5).points;
+    const core::Points other_sample =  // the same mug's surface, another seed
+        core::sample_correspondences(core::SyntheticCategory::mug, mugs.back().shape_parameters, 4000, 9).points;
+    const core::Points floor = eval::true_shape_points(model, other_sample);
+    EXPECT_EQ(floor.rows(), canonical_points);
+    const Eigen::Matrix4d T_observed_truth = pose(0.2, Eigen::Vector3d::UnitY(), Eigen::Vector3d(0.1, 0, 0));
+    const core::KdTree truth(moved(truth_points, T_observed_truth));
+    const core::Points observed = moved(truth_points, T_observed_truth), floor_posed = moved(floor, T_observed_truth);
+    const eval::BaselineObservation seen{&observed, &truth, core::truth_diagonal(truth_points), nullptr,
+                                         T_observed_truth, &floor_posed};
+    *out = eval::score_baselines(model, eval::fold_templates(model, training), seen,
+                                 eval::start_rotations(1, Eigen::Vector3d::UnitY()));
+    return out->size() == 4 ? (*out)[3].errors.reverse_eq5 : 0.0;
+  };
+  std::vector<eval::BaselineScore> dense, sparse;
+  const double dense_reverse = reverse_of(800, &dense), sparse_reverse = reverse_of(200, &sparse);
+  ASSERT_EQ(dense.size(), 4u);
+  EXPECT_EQ(dense[3].baseline, eval::Baseline::true_shape);
+  const double floor = dense[3].errors.symmetric_rms_per_diagonal;
+  EXPECT_GT(floor, 1e-4);
+  for (std::size_t b = 0; b < 3; ++b) EXPECT_LT(floor, dense[b].errors.symmetric_rms_per_diagonal) << b;
+  EXPECT_GT(sparse_reverse, 2.0 * dense_reverse);  // 4x fewer points: about 4x the mean squared distance
+}
+
 }  // namespace
 }  // namespace partreg

@@ -47,26 +47,29 @@ TEST(EvalCommand, QuickProtocolOnASyntheticCategoryWritesRowsTablesAndPlotsThatA
     EXPECT_TRUE(std::filesystem::exists(dir / "eval" / file)) << file;
 
   const std::vector<eval::EvalRow> rows = eval::read_rows_csv(dir / "eval" / "results.csv");
-  // 2 tested instances x (1 full + 12 views + 3 observations x 4 kinds x 3 levels) x (3 variants + 3
+  // 2 tested instances x (1 full + 12 views + 3 observations x 4 kinds x 3 levels) x (3 variants + 4
   // baselines).
-  EXPECT_EQ(rows.size(), 2u * (13 + 36) * 6);
+  EXPECT_EQ(rows.size(), 2u * (13 + 36) * 7);
   for (const eval::EvalRow& row : rows) {
     ASSERT_TRUE(std::isfinite(row.errors.symmetric_rms_per_diagonal));
-    if (row.variant == "oracle-template") continue;  // most templates lack the canonical's rows and parts
+    // Most templates, and the true shape, lack the canonical's rows and parts.
+    if (row.variant == "oracle-template" || row.variant == "true-shape") continue;
     ASSERT_TRUE(row.errors.correspondence_per_diagonal) << "synthetic data has ground-truth correspondences";
     ASSERT_TRUE(std::isfinite(row.errors.eq5_per_diagonal2));
     ASSERT_EQ(row.errors.part_eq5_per_diagonal2.size(), 2u);  // body, handle
   }
-  // Every observation has its three baselines, and the oracle (which may pick the canonical) is never worse
-  // than the rigid canonical on the same observation.
+  // Every observation has its four baselines; the oracle (which may pick the canonical) is never worse than
+  // the rigid canonical on the same observation, and the true shape (the tested mug itself at its true pose,
+  // whatever the perturbation did to the observation) is below both.
   std::map<std::tuple<std::string, int, int, int>, std::map<std::string, double>> by_observation;
   for (const eval::EvalRow& row : rows)
     by_observation[std::make_tuple(row.instance, row.view, static_cast<int>(row.perturbation),
                                    row.level_index)][row.variant] = row.errors.symmetric_rms_per_diagonal;
   EXPECT_EQ(by_observation.size(), 2u * (13 + 36));
   for (const auto& [observation, figures] : by_observation) {
-    ASSERT_EQ(figures.size(), 6u);
+    ASSERT_EQ(figures.size(), 7u);
     EXPECT_LE(figures.at("oracle-template"), figures.at("rigid-canonical") + 1e-12);
+    EXPECT_LT(figures.at("true-shape"), figures.at("oracle-template"));
   }
   // The tables are the CSV's means: Table 1 and Table 2 rows recomputed from the rows.
   const std::string tables = read_text(dir / "eval" / "tables.md");
@@ -92,7 +95,7 @@ TEST(EvalCommand, QuickProtocolOnASyntheticCategoryWritesRowsTablesAndPlotsThatA
     };
     std::string line = "| mugs |";
     for (const char* method :
-         {"holistic", "partwise", "hol+part", "oracle-template", "rigid-canonical", "mean-shape"})
+         {"holistic", "partwise", "hol+part", "oracle-template", "rigid-canonical", "mean-shape", "true-shape"})
       line += " " + two_decimals(100 * mean(method)) + " |";
     for (const std::string& variant : variants)
       line += " " + two_decimals(mean(variant) / mean("oracle-template")) + " |";

@@ -13,6 +13,13 @@
 namespace partreg::eval {
 namespace {
 
+// `points` farthest-point sampled to `count` (all of them when there are no more), as the canonical was.
+core::Points sampled_to(const core::Points& points, std::size_t count) {
+  return points.rows() <= static_cast<Eigen::Index>(count)
+             ? points
+             : core::select_rows(points, core::farthest_point_indices(points, count));
+}
+
 using Clock = std::chrono::steady_clock;
 
 double seconds_since(Clock::time_point start) {
@@ -119,11 +126,7 @@ std::vector<Template> fold_templates(const core::CategoryModel& model,
     if (instance.name == model.training.canonical ||
         std::find(names.begin(), names.end(), instance.name) == names.end())
       continue;
-    const core::Points sampled =
-        instance.points.rows() <= long(count)
-            ? instance.points
-            : core::select_rows(instance.points, core::farthest_point_indices(instance.points, count));
-    templates.push_back({instance.name, core::KdTree(sampled), false});
+    templates.push_back({instance.name, core::KdTree(sampled_to(instance.points, count)), false});
   }
   return templates;
 }
@@ -147,6 +150,10 @@ std::vector<Template> model_templates(const core::CategoryModel& model) {
 core::Points mean_shape(const core::CategoryModel& model) {
   const core::ShapeSpace& holistic = model.holistic();
   return model.normalization.undo(holistic.deformed(Eigen::VectorXd::Zero(holistic.dimensions())));
+}
+
+core::Points true_shape_points(const core::CategoryModel& model, const core::Points& surface) {
+  return sampled_to(surface, static_cast<std::size_t>(model.canonical.rows()));
 }
 
 std::vector<BaselineScore> score_baselines(const core::CategoryModel& model,
@@ -184,7 +191,14 @@ std::vector<BaselineScore> score_baselines(const core::CategoryModel& model,
                                   observation.diagonal, observation.truth_of_canonical_row),
       "mean", 0.0};
   mean.seconds = seconds_since(mean_start);
-  return {oracle, canonical, mean};
+  if (!observation.true_shape) return {oracle, canonical, mean};
+  const auto true_start = Clock::now();
+  BaselineScore truth{Baseline::true_shape,
+                      core::measure_against_truth(*observation.true_shape, {}, {}, *observation.truth,
+                                                  observation.diagonal, nullptr),
+                      "tested", 0.0};
+  truth.seconds = seconds_since(true_start);
+  return {oracle, canonical, mean, truth};
 }
 
 }  // namespace partreg::eval

@@ -1,6 +1,6 @@
 #pragma once
 /// \file
-/// What partreg's registration is measured against: three baselines scored on the same observation, against
+/// What partreg's registration is measured against: four baselines scored on the same observation, against
 /// the same truth, as the registration's variants (protocol.hpp gives each its own row).
 ///
 /// - oracle template: every training instance of the fold (never the tested one) rigidly aligned to the
@@ -9,6 +9,10 @@
 /// - rigid canonical: the canonical instance alone, rigidly aligned the same way.
 /// - mean shape: the undeformed mean shape (latent 0 of the holistic space) at partreg's own holistic pose,
 ///   so that it shows what the latent deformation adds once the pose is found.
+/// - true shape: the tested instance itself at its true pose, as M points (farthest-point sampled from a sample
+///   of its surface independent of the truth's): what a perfect registration of the canonical's M points
+///   would score. Not a rival but the floor under every figure: the spacing of M points on the surface
+///   bounds the reverse half (truth to nearest fitted point) and the truth's own spacing the forward half.
 ///
 /// Rigid alignment is a trimmed point-to-point ICP (align_rigidly) from the registration's own starts: the
 /// category frame turned about its up axis `restarts` times, centroids aligned; the start with the lowest
@@ -29,7 +33,7 @@
 namespace partreg::eval {
 
 /// The evaluation's baselines (not registration variants: core::Variant is the registration's own).
-enum class Baseline { oracle_template, rigid_canonical, mean_shape };
+enum class Baseline { oracle_template, rigid_canonical, mean_shape, true_shape };
 
 }  // namespace partreg::eval
 
@@ -37,10 +41,11 @@ namespace partreg::core {
 template <>
 struct EnumNames<eval::Baseline> {
   static constexpr const char* what = "baseline";
-  static constexpr std::array<std::pair<eval::Baseline, const char*>, 3> table{
+  static constexpr std::array<std::pair<eval::Baseline, const char*>, 4> table{
       {{eval::Baseline::oracle_template, "oracle-template"},
        {eval::Baseline::rigid_canonical, "rigid-canonical"},
-       {eval::Baseline::mean_shape, "mean-shape"}}};
+       {eval::Baseline::mean_shape, "mean-shape"},
+       {eval::Baseline::true_shape, "true-shape"}}};
 };
 }  // namespace partreg::core
 
@@ -111,13 +116,21 @@ struct BaselineObservation {
   const core::Points* truth_of_canonical_row = nullptr;
   /// partreg's holistic pose (SpaceFit::T_observed_canonical): canonical data frame -> observed frame.
   Eigen::Matrix4d T_observed_canonical = Eigen::Matrix4d::Identity();
+  /// The tested instance as M points at its true pose (observed frame, data units; true_shape_points), or
+  /// null: the true shape is then not scored.
+  const core::Points* true_shape = nullptr;
 };
 
 /// The undeformed mean shape (latent 0 of the holistic space) in the canonical data frame (M x 3).
 core::Points mean_shape(const core::CategoryModel& model);
 
-/// Scores the three baselines, in Baseline order. `templates` from fold_templates; `starts` from
-/// start_rotations. InputError for no templates or an empty observation.
+/// The true shape's points: `surface` (a sample of the tested instance's surface other than the truth's, data
+/// frame) farthest-point sampled to the model's M canonical points.
+core::Points true_shape_points(const core::CategoryModel& model, const core::Points& surface);
+
+/// Scores the baselines, in Baseline order; the true shape only when the observation carries it.
+/// `templates` from fold_templates; `starts` from start_rotations. InputError for no templates or an empty
+/// observation.
 std::vector<BaselineScore> score_baselines(const core::CategoryModel& model,
                                            const std::vector<Template>& templates,
                                            const BaselineObservation& observation,
