@@ -241,7 +241,7 @@ void add_eval_command(CLI::App& app) {
   add_training_flags(command, o->settings.training, {"up"});
   command->add_flag("--no-viewpoint", o->no_viewpoint, "do not tell the registration where the camera was");
   command->add_flag("--no-baselines", o->no_baselines,
-                    "skip the baseline rows (oracle-template, rigid-canonical, mean-shape)");
+                    "skip the baseline rows (oracle-template, rigid-canonical, mean-shape, true-shape)");
   command->add_option("--samples", o->dataset.points_per_instance, "surface samples per mesh (the truth)")
       ->capture_default_str();
   command->add_option("--seed", o->settings.seed, "seed of views, samples and perturbations")
