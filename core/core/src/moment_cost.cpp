@@ -87,12 +87,11 @@ std::array<Eigen::Matrix3d, 4> rotation_derivatives(const Eigen::Quaterniond& ro
   return derivatives;
 }
 
-// The a-th block of z_a (header): (M)_ab weights_k at index b (q + 1) + k, for b = 0..2 and k = 0..q.
-Eigen::VectorXd component_row(const Eigen::Matrix3d& M, int a, const Eigen::VectorXd& weights) {
+// The first 3 (q + 1) entries of z_a (header) for a matrix M in place of s R: M_ab weights_k at index
+// b (q + 1) + k, written into `out`.
+void component_row(const Eigen::Matrix3d& M, int a, const Eigen::VectorXd& weights, Eigen::Ref<Eigen::VectorXd> out) {
   const auto n = weights.size();
-  Eigen::VectorXd out(3 * n);
   for (int b = 0; b < 3; ++b) out.segment(b * n, n) = M(a, b) * weights;
-  return out;
 }
 
 }  // namespace
@@ -115,45 +114,42 @@ bool MomentCost::Evaluate(double const* const* parameters, double* residuals, do
   Eigen::VectorXd u(n);
   u << 1.0, latent;
   const Eigen::Matrix3d R = rotation.toRotationMatrix();
+  Eigen::VectorXd z(width);
   for (int a = 0; a < 3; ++a) {
-    Eigen::VectorXd z(width);
-    z << component_row(scale * R, a, u), translation[a], 1.0;
+    component_row(scale * R, a, u, z.head(block));
+    z.tail<2>() << translation[a], 1.0;
     Eigen::Map<Eigen::VectorXd>(residuals + a * width, width) = factors_[static_cast<std::size_t>(a)] * z;
   }
   Eigen::Map<Eigen::VectorXd>(residuals + data, q_) = inverse_sd_.cwiseProduct(latent);
   if (!jacobians) return true;
-  // Each parameter's column of dz_a/dtheta, mapped through S_a; the prior rows depend on the latent only.
-  const auto jacobian = [&](int index, int columns) {
-    Eigen::Map<RowMajor> J(jacobians[index], num_residuals(), columns);
-    J.setZero();
-    return J;
+  // Parameter block i's Jacobian (rows: the three components' residuals, then the prior's).
+  const auto jacobian = [&](int i, Eigen::Index columns) {
+    return Eigen::Map<RowMajor>(jacobians[i], num_residuals(), columns);
   };
-  // Column c of a block: component a's rows are S_a's first 3 (q + 1) columns times dm_a.
-  const auto through_factor = [&](Eigen::Map<RowMajor>& J, int c, const Eigen::Matrix3d& M,
-                                  const Eigen::VectorXd& weights) {
-    for (int a = 0; a < 3; ++a)
-      J.col(c).segment(a * width, width) =
-          factors_[static_cast<std::size_t>(a)].leftCols(block) * component_row(M, a, weights);
-  };
-  if (jacobians[0]) {
-    Eigen::Map<RowMajor> J = jacobian(0, 4);
-    const auto derivatives = rotation_derivatives(Eigen::Quaterniond(rotation));
-    for (int c = 0; c < 4; ++c) through_factor(J, c, scale * derivatives[static_cast<std::size_t>(c)], u);
+  // Per component a, the derivatives of z_a's first 3 (q + 1) entries by the rotation (4), the scale (1) and
+  // the latent (q), mapped through S_a in one product; the translation enters through S_a's next column.
+  const auto derivatives = rotation_derivatives(Eigen::Quaterniond(rotation));
+  Eigen::MatrixXd dz(block, 5 + q_), through(width, 5 + q_);
+  for (int a = 0; a < 3; ++a) {
+    const Eigen::MatrixXd& S = factors_[static_cast<std::size_t>(a)];
+    for (int c = 0; c < 4; ++c) component_row(scale * derivatives[static_cast<std::size_t>(c)], a, u, dz.col(c));
+    component_row(R, a, u, dz.col(4));
+    for (int j = 0; j < q_; ++j) component_row(scale * R, a, Eigen::VectorXd::Unit(n, j + 1), dz.col(5 + j));
+    through.noalias() = S.leftCols(block) * dz;
+    const Eigen::Index rows = a * width;
+    if (jacobians[0]) jacobian(0, 4).middleRows(rows, width) = through.leftCols(4);
+    if (jacobians[1]) {
+      jacobian(1, 3).middleRows(rows, width).setZero();
+      jacobian(1, 3).col(a).segment(rows, width) = S.col(block);
+    }
+    if (jacobians[2]) jacobian(2, 1).middleRows(rows, width) = through.col(4);
+    if (jacobians[3]) jacobian(3, q_).middleRows(rows, width) = through.rightCols(q_);
   }
-  if (jacobians[1]) {
-    Eigen::Map<RowMajor> J = jacobian(1, 3);
-    for (int a = 0; a < 3; ++a)
-      J.col(a).segment(a * width, width) = factors_[static_cast<std::size_t>(a)].col(block);
-  }
-  if (jacobians[2]) {
-    Eigen::Map<RowMajor> J = jacobian(2, 1);
-    through_factor(J, 0, R, u);
-  }
-  if (jacobians[3]) {
-    Eigen::Map<RowMajor> J = jacobian(3, q_);
-    for (int j = 0; j < q_; ++j) through_factor(J, j, scale * R, Eigen::VectorXd::Unit(n, j + 1));
-    J.bottomRows(q_) = inverse_sd_.asDiagonal();
-  }
+  // The prior's rows depend on the latent only.
+  constexpr std::array<int, 3> kPoseColumns = {4, 3, 1};  // rotation, translation, scale
+  for (int i = 0; i < 3; ++i)
+    if (jacobians[i]) jacobian(i, kPoseColumns[static_cast<std::size_t>(i)]).bottomRows(q_).setZero();
+  if (jacobians[3]) jacobian(3, q_).bottomRows(q_) = inverse_sd_.asDiagonal();
   return true;
 }
 

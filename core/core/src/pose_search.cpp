@@ -70,11 +70,13 @@ double trimmed_mean_distance(const Eigen::VectorXd& squared, double cap) {
   return squared.size() ? sum / static_cast<double>(squared.size()) : std::numeric_limits<double>::infinity();
 }
 
-// Continues a candidate by `steps` outer iterations; the new steps are appended to its history.
+// Continues a candidate by `steps` outer iterations; the new steps are appended to its history. `hints`: its
+// closest points from its last round on the same problem (solve_space).
 void advance(SpaceSolution& candidate, int steps, const ShapeSpace& space, const Points& normals,
-             const Observation& observation, RegistrationSettings settings) {
+             const Observation& observation, RegistrationSettings settings, CorrespondenceHints* hints) {
   settings.convergence.outer_iterations = steps;
-  SpaceSolution next = solve_space(space, normals, observation, candidate.latent, candidate.pose, settings);
+  SpaceSolution next =
+      solve_space(space, normals, observation, candidate.latent, candidate.pose, settings, hints);
   const auto append = [](auto& history, const auto& more) {
     history.insert(history.end(), more.begin(), more.end());
   };
@@ -196,6 +198,7 @@ SearchOutcome search_poses(const ShapeSpace& space, const Points& normals, const
   const InitialisationSettings& init = settings.initialisation;
   std::vector<SpaceSolution> candidates(starts.size());
   std::vector<Pose> origin = starts;
+  std::vector<CorrespondenceHints> hints(starts.size());  // each candidate's, on the screening problem
   for (std::size_t i = 0; i < starts.size(); ++i) {
     candidates[i].latent = latent;
     candidates[i].pose = starts[i];
@@ -218,7 +221,8 @@ SearchOutcome search_poses(const ShapeSpace& space, const Points& normals, const
             const int budget =
                 std::min(steps, settings.convergence.outer_iterations - candidates[i].iterations);
             if (budget > 0)
-              advance(candidates[i], budget, screen_space, screen_normals, screen_observation, settings);
+              advance(candidates[i], budget, screen_space, screen_normals, screen_observation, settings,
+                      &hints[i]);
             scores[i] =
                 selection_score(screen_space, screen_normals, screen_observation, candidates[i], settings);
           }
@@ -231,12 +235,15 @@ SearchOutcome search_poses(const ShapeSpace& space, const Points& normals, const
     const std::size_t keep = std::max(finalists, candidates.size() / 2);
     std::vector<SpaceSolution> kept;
     std::vector<Pose> kept_origin;
+    std::vector<CorrespondenceHints> kept_hints;
     for (std::size_t k = 0; k < keep; ++k) {
       kept.push_back(std::move(candidates[order[k]]));
       kept_origin.push_back(origin[order[k]]);
+      kept_hints.push_back(std::move(hints[order[k]]));
     }
     candidates = std::move(kept);
     origin = std::move(kept_origin);
+    hints = std::move(kept_hints);
     scores.resize(candidates.size());
     steps *= 2;
   }
@@ -252,7 +259,8 @@ SearchOutcome search_poses(const ShapeSpace& space, const Points& normals, const
           if (coarse) candidates[i].iterations = 0;
           const int left = settings.convergence.outer_iterations - candidates[i].iterations;
           if (left > 0 && (coarse || !candidates[i].converged))
-            advance(candidates[i], left, space, normals, observation, settings);
+            // The screening's hints index the coarse problem's points: the whole problem starts afresh.
+            advance(candidates[i], left, space, normals, observation, settings, coarse ? nullptr : &hints[i]);
           scores[i] = selection_score(space, normals, observation, candidates[i], settings);
         }
       },

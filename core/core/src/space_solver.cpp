@@ -126,20 +126,21 @@ double solve_inner(ceres::Problem& problem, const RegistrationSettings& settings
 
 SpaceSolution solve_space(const ShapeSpace& space, const Points& normals, const Observation& observation,
                           const Eigen::VectorXd& initial_latent, const Pose& initial_pose,
-                          const RegistrationSettings& settings) {
+                          const RegistrationSettings& settings, CorrespondenceHints* hints) {
   const auto start = std::chrono::steady_clock::now();
   SpaceSolution solution;
   solution.latent = initial_latent;
   solution.pose = initial_pose;
   double previous = std::numeric_limits<double>::infinity();
-  CorrespondenceHints hints;
+  CorrespondenceHints own_hints;
+  CorrespondenceHints& last = hints ? *hints : own_hints;
   for (int outer = 0; outer < settings.convergence.outer_iterations; ++outer) {
     const Eigen::VectorXd before_latent = solution.latent;
     const Eigen::Vector3d before_translation = solution.pose.translation;
     const Eigen::Quaterniond before_rotation = solution.pose.rotation;
     const Points posed = solution.pose.apply(deformed_points(space, solution.latent));
     const Correspondences pairs = correspond(
-        posed, visible_rows(posed, normals, solution.pose, observation.viewpoint), observation, settings, &hints);
+        posed, visible_rows(posed, normals, solution.pose, observation.viewpoint), observation, settings, &last);
     if (pairs.from_canonical.empty() && pairs.from_observed.empty()) {
       solution.had_pairs = false;
       break;

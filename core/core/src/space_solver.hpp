@@ -88,9 +88,10 @@ void constrain_pose(ceres::Problem& problem, double* rotation, double* scale,
 double solve_inner(ceres::Problem& problem, const RegistrationSettings& settings);
 
 /// Fits `space` from the initial latent and pose. `normals` are outward normals of the space's canonical
-/// points (used only with a viewpoint).
+/// points (used only with a viewpoint). `hints` (optional): the closest points of an earlier fit of the same
+/// space to the same observation, read and updated (a fit continued in rounds keeps them between rounds).
 SpaceSolution solve_space(const ShapeSpace& space, const Points& normals, const Observation& observation,
                           const Eigen::VectorXd& initial_latent, const Pose& initial_pose,
-                          const RegistrationSettings& settings);
+                          const RegistrationSettings& settings, CorrespondenceHints* hints = nullptr);
 
 }  // namespace partreg::core::detail
