@@ -72,15 +72,21 @@ TEST(RigidAlignment, StartsTurnAboutTheUpAxisAndBadInputIsRefused) {
   EXPECT_THROW(eval::align_rigidly(tree, core::Points::Random(20, 3), {}), InputError);
 }
 
+// Every mug but the last, sampled for training (the last is the one observed).
+std::vector<core::TrainingInstance> all_but_the_last(const std::vector<core::SyntheticInstance>& mugs) {
+  std::vector<core::TrainingInstance> training;
+  for (std::size_t i = 0; i + 1 < mugs.size(); ++i)
+    training.push_back({mugs[i].name, mug_points(mugs[i]), {}, {}, {}});
+  return training;
+}
+
 // Four synthetic mugs train the model; a fifth is observed. The oracle keeps the template closest to the
 // truth, which is never worse than the canonical alone; the mean shape at the true pose is close to the
 // truth, and far from it at a wrong pose.
 TEST(Baselines, TheOracleKeepsTheTemplateClosestToTheTruth) {
   const std::vector<core::SyntheticInstance> mugs =
       core::make_synthetic_category(core::SyntheticCategory::mug, 5, 11);
-  std::vector<core::TrainingInstance> training;
-  for (std::size_t i = 0; i + 1 < mugs.size(); ++i)
-    training.push_back({mugs[i].name, mug_points(mugs[i]), {}, {}, {}});
+  const std::vector<core::TrainingInstance> training = all_but_the_last(mugs);
   core::TrainingSettings settings;
   settings.canonical_points = 400;
   const core::CategoryModel model = core::train_category("mugs", training, {}, settings);
@@ -136,24 +142,25 @@ TEST(Baselines, TheOracleKeepsTheTemplateClosestToTheTruth) {
 TEST(Baselines, TheTrueShapeIsTheFloorAndFallsWithMorePoints) {
   const std::vector<core::SyntheticInstance> mugs =
       core::make_synthetic_category(core::SyntheticCategory::mug, 5, 11);
-  std::vector<core::TrainingInstance> training;
-  for (std::size_t i = 0; i + 1 < mugs.size(); ++i)
-    training.push_back({mugs[i].name, mug_points(mugs[i]), {}, {}, {}});
+  const std::vector<core::TrainingInstance> training = all_but_the_last(mugs);
   const auto reverse_of = [&](int canonical_points, std::vector<eval::BaselineScore>* out) {
     core::TrainingSettings settings;
     settings.canonical_points = canonical_points;
     const core::CategoryModel model = core::train_category("mugs", training, {}, settings);
     const core::Points truth_points =
-        core::sample_correspondences(core::SyntheticCategory::mug, mugs.back().shape_parameters, 4000, 5).points;
+        core::sample_correspondences(core::SyntheticCategory::mug, mugs.back().shape_parameters, 4000, 5)
+            .points;
     const core::Points other_sample =  // the same mug's surface, another seed
-        core::sample_correspondences(core::SyntheticCategory::mug, mugs.back().shape_parameters, 4000, 9).points;
+        core::sample_correspondences(core::SyntheticCategory::mug, mugs.back().shape_parameters, 4000, 9)
+            .points;
     const core::Points floor = eval::true_shape_points(model, other_sample);
     EXPECT_EQ(floor.rows(), canonical_points);
     const Eigen::Matrix4d T_observed_truth = pose(0.2, Eigen::Vector3d::UnitY(), Eigen::Vector3d(0.1, 0, 0));
     const core::KdTree truth(moved(truth_points, T_observed_truth));
-    const core::Points observed = moved(truth_points, T_observed_truth), floor_posed = moved(floor, T_observed_truth);
-    const eval::BaselineObservation seen{&observed, &truth, core::truth_diagonal(truth_points), nullptr,
-                                         T_observed_truth, &floor_posed};
+    const core::Points observed = moved(truth_points, T_observed_truth),
+                       floor_posed = moved(floor, T_observed_truth);
+    const eval::BaselineObservation seen{&observed, &truth,           core::truth_diagonal(truth_points),
+                                         nullptr,   T_observed_truth, &floor_posed};
     *out = eval::score_baselines(model, eval::fold_templates(model, training), seen,
                                  eval::start_rotations(1, Eigen::Vector3d::UnitY()));
     return out->size() == 4 ? (*out)[3].errors.reverse_eq5 : 0.0;

@@ -94,8 +94,8 @@ TEST(EvalCommand, QuickProtocolOnASyntheticCategoryWritesRowsTablesAndPlotsThatA
       return eval::mean_symmetric_rms_per_diagonal(rows, "mugs", method, partial);
     };
     std::string line = "| mugs |";
-    for (const char* method :
-         {"holistic", "partwise", "hol+part", "oracle-template", "rigid-canonical", "mean-shape", "true-shape"})
+    for (const char* method : {"holistic", "partwise", "hol+part", "oracle-template", "rigid-canonical",
+                               "mean-shape", "true-shape"})
       line += " " + two_decimals(100 * mean(method)) + " |";
     for (const std::string& variant : variants)
       line += " " + two_decimals(mean(variant) / mean("oracle-template")) + " |";

@@ -226,9 +226,10 @@ std::vector<Seam> find_seams(const std::vector<Part>& parts, double radius) {
     for (std::size_t b = a + 1; b < parts.size(); ++b) {
       const Points points = seam_points(*parts[a].space, *parts[b].space, radius);
       if (points.rows() == 0) continue;
-      seams.push_back({static_cast<int>(a), static_cast<int>(b),
-                       std::make_shared<const SeamSide>(seam_side(*parts[a].space, points, parts[a].centre)),
-                       std::make_shared<const SeamSide>(seam_side(*parts[b].space, points, parts[b].centre))});
+      seams.push_back(
+          {static_cast<int>(a), static_cast<int>(b),
+           std::make_shared<const SeamSide>(seam_side(*parts[a].space, points, parts[a].centre)),
+           std::make_shared<const SeamSide>(seam_side(*parts[b].space, points, parts[b].centre))});
     }
   return seams;
 }
@@ -310,8 +311,8 @@ std::vector<Part> describe_parts(const CategoryModel& model, const Points& norma
 }
 
 // Adds the seam terms; their parameter blocks are the offsets and latents in `unknowns`.
-void add_seams(ceres::Problem& problem, const std::vector<Part>& parts, const std::vector<Seam>& seams,
-               Unknowns& unknowns, double seam_weight) {
+void add_seams(ceres::Problem& problem, const std::vector<Seam>& seams, Unknowns& unknowns,
+               double seam_weight) {
   Eigen::Index total = 0;
   for (const Seam& seam : seams) total += seam.on_a->rest.rows();
   if (total == 0 || seam_weight <= 0.0) return;
@@ -324,7 +325,8 @@ void add_seams(ceres::Problem& problem, const std::vector<Part>& parts, const st
         blocks.push_back(block);
     }
     problem.AddResidualBlock(
-        new SeamCost(seam.on_a, seam.on_b, std::sqrt(seam_weight / static_cast<double>(total))), nullptr, blocks);
+        new SeamCost(seam.on_a, seam.on_b, std::sqrt(seam_weight / static_cast<double>(total))), nullptr,
+        blocks);
   }
 }
 
@@ -347,7 +349,7 @@ double solve_step(const std::vector<Part>& parts, const std::vector<Seam>& seams
                              nullptr, unknowns.offset_rotation[p].data(),
                              unknowns.offset_translation[p].data());
   }
-  add_seams(problem, parts, seams, unknowns, settings.objective.seam_weight);
+  add_seams(problem, seams, unknowns, settings.objective.seam_weight);
   constrain_pose(problem, rotation, scale, settings);
   return solve_inner(problem, settings);  // 7 + P (6 + q) unknowns
 }

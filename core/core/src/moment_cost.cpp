@@ -10,8 +10,8 @@ namespace {
 
 using RowMajor = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;
 
-// The Q_a of the header from three moments of the vectors p_m = vec(P_m) (index b (q + 1) + k): G = sum w p p^T
-// and h = sum w p, shared by the three components, and g_a = sum w p o_a, which is not:
+// The Q_a of the header from three moments of the vectors p_m = vec(P_m) (index b (q + 1) + k): G = sum w p
+// p^T and h = sum w p, shared by the three components, and g_a = sum w p o_a, which is not:
 //   Q_a = [G, h, -g_a; h^T, sum w, -sum w o_a; -g_a^T, -sum w o_a, sum w o_a^2].
 // Many pairs share a canonical row (every observed point has one), so the pairs are first summed per row:
 // the moments then cost one outer product per row used instead of one per pair.
@@ -28,7 +28,7 @@ std::array<Eigen::MatrixXd, 3> step_moments(const ShapeSpace& space, const std::
   std::vector<int> rows;
   for (Eigen::Index m = 0; m < row_weight.size(); ++m)
     if (row_weight[m] > 0.0) rows.push_back(static_cast<int>(m));
-  RowMajor weighted_p(static_cast<Eigen::Index>(rows.size()), block);  // sqrt(W_m) p_m
+  RowMajor weighted_p(static_cast<Eigen::Index>(rows.size()), block);     // sqrt(W_m) p_m
   Eigen::MatrixXd weighted_o(static_cast<Eigen::Index>(rows.size()), 3);  // (sum w o) / sqrt(W_m)
   Eigen::VectorXd root(static_cast<Eigen::Index>(rows.size()));
   for (std::size_t i = 0; i < rows.size(); ++i) {
@@ -36,7 +36,8 @@ std::array<Eigen::MatrixXd, 3> step_moments(const ShapeSpace& space, const std::
     const int m = rows[i];
     root[r] = std::sqrt(row_weight[m]);
     for (int b = 0; b < 3; ++b) {
-      weighted_p(r, b * n) = root[r] * (space.canonical(m, b) + space.kernel_mean[3 * m + b]);  // u_0 = 1: rest
+      weighted_p(r, b * n) =
+          root[r] * (space.canonical(m, b) + space.kernel_mean[3 * m + b]);  // u_0 = 1: rest
       for (int k = 1; k < n; ++k) weighted_p(r, b * n + k) = root[r] * space.kernel_basis(3 * m + b, k - 1);
     }
     weighted_o.row(r) = row_targets.row(m) / root[r];
@@ -63,7 +64,8 @@ std::array<Eigen::MatrixXd, 3> step_moments(const ShapeSpace& space, const std::
 Eigen::MatrixXd square_root(const Eigen::MatrixXd& Q) {
   const Eigen::LDLT<Eigen::MatrixXd> ldlt(Q);
   const Eigen::VectorXd root_d = ldlt.vectorD().cwiseMax(0.0).cwiseSqrt();
-  // Times P as column swaps (the transpositions themselves), not as a product with a dense permutation matrix.
+  // Times P as column swaps (the transpositions themselves), not as a product with a dense permutation
+  // matrix.
   return (root_d.asDiagonal() * Eigen::MatrixXd(ldlt.matrixU())) * ldlt.transpositionsP().transpose();
 }
 
@@ -89,7 +91,8 @@ std::array<Eigen::Matrix3d, 4> rotation_derivatives(const Eigen::Quaterniond& ro
 
 // The first 3 (q + 1) entries of z_a (header) for a matrix M in place of s R: M_ab weights_k at index
 // b (q + 1) + k, written into `out`.
-void component_row(const Eigen::Matrix3d& M, int a, const Eigen::VectorXd& weights, Eigen::Ref<Eigen::VectorXd> out) {
+void component_row(const Eigen::Matrix3d& M, int a, const Eigen::VectorXd& weights,
+                   Eigen::Ref<Eigen::VectorXd> out) {
   const auto n = weights.size();
   for (int b = 0; b < 3; ++b) out.segment(b * n, n) = M(a, b) * weights;
 }
@@ -132,7 +135,8 @@ bool MomentCost::Evaluate(double const* const* parameters, double* residuals, do
   Eigen::MatrixXd dz(block, 5 + q_), through(width, 5 + q_);
   for (int a = 0; a < 3; ++a) {
     const Eigen::MatrixXd& S = factors_[static_cast<std::size_t>(a)];
-    for (int c = 0; c < 4; ++c) component_row(scale * derivatives[static_cast<std::size_t>(c)], a, u, dz.col(c));
+    for (int c = 0; c < 4; ++c)
+      component_row(scale * derivatives[static_cast<std::size_t>(c)], a, u, dz.col(c));
     component_row(R, a, u, dz.col(4));
     for (int j = 0; j < q_; ++j) component_row(scale * R, a, Eigen::VectorXd::Unit(n, j + 1), dz.col(5 + j));
     through.noalias() = S.leftCols(block) * dz;

@@ -41,7 +41,8 @@ Correspondences correspond(const Points& posed, const std::vector<bool>& visible
     for (int m : active) {
       int& hint = last.observed_of_row[static_cast<std::size_t>(m)];
       const Eigen::Vector3d query = posed.row(m).transpose();
-      const auto [n, squared] = hint >= 0 ? observation.tree->nearest(query, hint) : observation.tree->nearest(query);
+      const auto [n, squared] =
+          hint >= 0 ? observation.tree->nearest(query, hint) : observation.tree->nearest(query);
       hint = n;
       result.from_canonical.push_back({m, observation.points.row(n).transpose(), squared});
     }
@@ -139,8 +140,9 @@ SpaceSolution solve_space(const ShapeSpace& space, const Points& normals, const 
     const Eigen::Vector3d before_translation = solution.pose.translation;
     const Eigen::Quaterniond before_rotation = solution.pose.rotation;
     const Points posed = solution.pose.apply(deformed_points(space, solution.latent));
-    const Correspondences pairs = correspond(
-        posed, visible_rows(posed, normals, solution.pose, observation.viewpoint), observation, settings, &last);
+    const Correspondences pairs =
+        correspond(posed, visible_rows(posed, normals, solution.pose, observation.viewpoint), observation,
+                   settings, &last);
     if (pairs.from_canonical.empty() && pairs.from_observed.empty()) {
       solution.had_pairs = false;
       break;
@@ -167,8 +169,7 @@ SpaceSolution solve_space(const ShapeSpace& space, const Points& normals, const 
     const double moved = (solution.latent - before_latent).norm() +
                          (solution.pose.translation - before_translation).norm() +
                          solution.pose.rotation.angularDistance(before_rotation);
-    if (std::abs(previous - cost) <=
-            settings.convergence.tolerance * std::max(cost, 1e-12) ||
+    if (std::abs(previous - cost) <= settings.convergence.tolerance * std::max(cost, 1e-12) ||
         moved < settings.convergence.tolerance) {
       solution.converged = true;
       break;

@@ -209,8 +209,12 @@ void run_job(const EvalInput& input, const EvalSettings& settings, const FoldCon
   // The full view's sample is independent of the truth's (for cloud data it is the truth itself).
   const core::Points true_shape =
       moved_by(true_shape_points(model, test.observations.front().points), perturbed.T_perturbed_original);
-  BaselineObservation seen{&perturbed.points, &truth, test.diagonal, truth_of_row ? &*truth_of_row : nullptr,
-                           holistic_pose(model, perturbed.points, registration, results), &true_shape};
+  BaselineObservation seen{&perturbed.points,
+                           &truth,
+                           test.diagonal,
+                           truth_of_row ? &*truth_of_row : nullptr,
+                           holistic_pose(model, perturbed.points, registration, results),
+                           &true_shape};
   const std::vector<Eigen::Matrix3d> starts =
       start_rotations(settings.registration.initialisation.restarts, up);
   const std::vector<BaselineScore> scores = score_baselines(model, fold.templates, seen, starts);

@@ -9,7 +9,8 @@
 /// - rigid canonical: the canonical instance alone, rigidly aligned the same way.
 /// - mean shape: the undeformed mean shape (latent 0 of the holistic space) at partreg's own holistic pose,
 ///   so that it shows what the latent deformation adds once the pose is found.
-/// - true shape: the tested instance itself at its true pose, as M points (farthest-point sampled from a sample
+/// - true shape: the tested instance itself at its true pose, as M points (farthest-point sampled from a
+/// sample
 ///   of its surface independent of the truth's): what a perfect registration of the canonical's M points
 ///   would score. Not a rival but the floor under every figure: the spacing of M points on the surface
 ///   bounds the reverse half (truth to nearest fitted point) and the truth's own spacing the forward half.
