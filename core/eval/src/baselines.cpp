@@ -15,9 +15,7 @@ namespace {
 
 // `points` farthest-point sampled to `count` (all of them when there are no more), as the canonical was.
 core::Points sampled_to(const core::Points& points, std::size_t count) {
-  return points.rows() <= static_cast<Eigen::Index>(count)
-             ? points
-             : core::select_rows(points, core::farthest_point_indices(points, count));
+  return core::select_rows(points, core::subsample_indices(points, count, /*voxel_size=*/0.0));
 }
 
 using Clock = std::chrono::steady_clock;
