@@ -143,6 +143,27 @@ std::optional<CoarseProblem> coarse_problem(const ShapeSpace& space, const Point
   return coarse;
 }
 
+// One hypothesis of the search: its fit so far, where it started and its closest-point hints (on the problem
+// it is being advanced on).
+struct Candidate {
+  SpaceSolution fit;
+  Pose start;
+  CorrespondenceHints hints;
+  double score = 0.0;
+};
+
+// The better half (at least `finalists`) of the candidates by score, best first.
+std::vector<Candidate> better_half(std::vector<Candidate> candidates, std::size_t finalists) {
+  std::vector<std::size_t> order(candidates.size());
+  std::iota(order.begin(), order.end(), 0);
+  std::sort(order.begin(), order.end(),
+            [&](std::size_t a, std::size_t b) { return candidates[a].score < candidates[b].score; });
+  std::vector<Candidate> kept;
+  const std::size_t keep = std::max(finalists, candidates.size() / 2);
+  for (std::size_t k = 0; k < keep; ++k) kept.push_back(std::move(candidates[order[k]]));
+  return kept;
+}
+
 }  // namespace
 
 std::vector<Pose> starting_poses(const Eigen::Vector3d& centre, const Points& canonical,
@@ -196,14 +217,11 @@ SearchOutcome search_poses(const ShapeSpace& space, const Points& normals, const
                            const std::vector<Pose>& starts, const Eigen::VectorXd& latent,
                            const RegistrationSettings& settings) {
   const InitialisationSettings& init = settings.initialisation;
-  std::vector<SpaceSolution> candidates(starts.size());
-  std::vector<Pose> origin = starts;
-  std::vector<CorrespondenceHints> hints(starts.size());  // each candidate's, on the screening problem
+  std::vector<Candidate> candidates(starts.size());
   for (std::size_t i = 0; i < starts.size(); ++i) {
-    candidates[i].latent = latent;
-    candidates[i].pose = starts[i];
+    candidates[i].fit.latent = latent;
+    candidates[i].fit.pose = candidates[i].start = starts[i];
   }
-  std::vector<double> scores(starts.size());
   const auto finalists = static_cast<std::size_t>(std::max(1, init.finalists));
   const std::optional<CoarseProblem> coarse =
       candidates.size() > finalists ? coarse_problem(space, normals, observation, init.screening_points)
@@ -217,63 +235,49 @@ SearchOutcome search_poses(const ShapeSpace& space, const Points& normals, const
         static_cast<Eigen::Index>(candidates.size()),
         [&](Eigen::Index begin, Eigen::Index end) {
           for (auto i = static_cast<std::size_t>(begin); i < static_cast<std::size_t>(end); ++i) {
+            Candidate& candidate = candidates[i];
             // Never more outer steps in all than the convergence settings allow.
             const int budget =
-                std::min(steps, settings.convergence.outer_iterations - candidates[i].iterations);
+                std::min(steps, settings.convergence.outer_iterations - candidate.fit.iterations);
             if (budget > 0)
-              advance(candidates[i], budget, screen_space, screen_normals, screen_observation, settings,
-                      &hints[i]);
-            scores[i] =
-                selection_score(screen_space, screen_normals, screen_observation, candidates[i], settings);
+              advance(candidate.fit, budget, screen_space, screen_normals, screen_observation, settings,
+                      &candidate.hints);
+            candidate.score =
+                selection_score(screen_space, screen_normals, screen_observation, candidate.fit, settings);
           }
         },
         0, 1);
-    std::vector<std::size_t> order(candidates.size());
-    std::iota(order.begin(), order.end(), 0);
-    std::sort(order.begin(), order.end(),
-              [&](std::size_t a, std::size_t b) { return scores[a] < scores[b]; });
-    const std::size_t keep = std::max(finalists, candidates.size() / 2);
-    std::vector<SpaceSolution> kept;
-    std::vector<Pose> kept_origin;
-    std::vector<CorrespondenceHints> kept_hints;
-    for (std::size_t k = 0; k < keep; ++k) {
-      kept.push_back(std::move(candidates[order[k]]));
-      kept_origin.push_back(origin[order[k]]);
-      kept_hints.push_back(std::move(hints[order[k]]));
-    }
-    candidates = std::move(kept);
-    origin = std::move(kept_origin);
-    hints = std::move(kept_hints);
-    scores.resize(candidates.size());
+    candidates = better_half(std::move(candidates), finalists);
     steps *= 2;
   }
-  SearchOutcome outcome;
-  outcome.hypotheses = static_cast<int>(starts.size());
-  outcome.best_score = outcome.runner_up = std::numeric_limits<double>::infinity();
   parallel_for(
       static_cast<Eigen::Index>(candidates.size()),
       [&](Eigen::Index begin, Eigen::Index end) {
         for (auto i = static_cast<std::size_t>(begin); i < static_cast<std::size_t>(end); ++i) {
+          Candidate& candidate = candidates[i];
           // Steps on the coarse problem do not count against the whole problem's budget (nor in the
           // iterations reported: their history stays), nor does settling there mean settling here.
-          if (coarse) candidates[i].iterations = 0;
-          const int left = settings.convergence.outer_iterations - candidates[i].iterations;
-          if (left > 0 && (coarse || !candidates[i].converged))
+          if (coarse) candidate.fit.iterations = 0;
+          const int left = settings.convergence.outer_iterations - candidate.fit.iterations;
+          if (left > 0 && (coarse || !candidate.fit.converged))
             // The screening's hints index the coarse problem's points: the whole problem starts afresh.
-            advance(candidates[i], left, space, normals, observation, settings, coarse ? nullptr : &hints[i]);
-          scores[i] = selection_score(space, normals, observation, candidates[i], settings);
+            advance(candidate.fit, left, space, normals, observation, settings,
+                    coarse ? nullptr : &candidate.hints);
+          candidate.score = selection_score(space, normals, observation, candidate.fit, settings);
         }
       },
       0, 1);
-  for (std::size_t i = 0; i < candidates.size(); ++i) {
-    const double score = scores[i];
-    if (score < outcome.best_score) {
+  SearchOutcome outcome;
+  outcome.hypotheses = static_cast<int>(starts.size());
+  outcome.best_score = outcome.runner_up = std::numeric_limits<double>::infinity();
+  for (const Candidate& candidate : candidates) {
+    if (candidate.score < outcome.best_score) {
       outcome.runner_up = outcome.best_score;
-      outcome.best_score = score;
-      outcome.best = candidates[i];
-      outcome.best_start = origin[i];
+      outcome.best_score = candidate.score;
+      outcome.best = candidate.fit;
+      outcome.best_start = candidate.start;
     } else {
-      outcome.runner_up = std::min(outcome.runner_up, score);
+      outcome.runner_up = std::min(outcome.runner_up, candidate.score);
     }
   }
   return outcome;
