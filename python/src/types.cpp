@@ -201,7 +201,7 @@ void bind_registration_result(py::module_& m) {
       .def_readonly("points", &core::RefinementField::points, "fitted points refined (0 when off)")
       .def_readonly("observed", &core::RefinementField::observed, "of those, the ones counted as observed")
       .def_readonly("matched", &core::RefinementField::matched,
-                    "observed points within two gates of the fit (the rest are strays, left out)")
+                    "observed points the E-step matched (the rest, far from the fit and alone, are strays)")
       .def_readonly("thickness", &core::RefinementField::thickness,
                     "how thick the observed surface is (median spread off local planes), / the diagonal")
       .def_readonly("iterations", &core::RefinementField::iterations, "EM iterations run")

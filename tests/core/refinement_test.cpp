@@ -55,7 +55,8 @@ Setup make_setup() {
   // The bump faces +x (the camera's side below), a fifth of the diagonal wide and 4% high.
   Eigen::Index front = 0;
   held_out.col(0).maxCoeff(&front);
-  setup.truth = with_bump(held_out, held_out.row(front).transpose(), 0.1 * setup.diagonal, 0.04 * setup.diagonal);
+  setup.truth =
+      with_bump(held_out, held_out.row(front).transpose(), 0.1 * setup.diagonal, 0.04 * setup.diagonal);
   return setup;
 }
 
@@ -90,7 +91,8 @@ PartialView front_half() {
     if (truth(i, 0) > middle) rows.push_back(static_cast<int>(i));
   PartialView view;
   view.points = Points(static_cast<Eigen::Index>(rows.size()), 3);
-  for (std::size_t i = 0; i < rows.size(); ++i) view.points.row(static_cast<Eigen::Index>(i)) = truth.row(rows[i]);
+  for (std::size_t i = 0; i < rows.size(); ++i)
+    view.points.row(static_cast<Eigen::Index>(i)) = truth.row(rows[i]);
   view.viewpoint = truth.colwise().mean().transpose() + Eigen::Vector3d(2.0 * setup().diagonal, 0.0, 0.0);
   return view;
 }
@@ -130,10 +132,14 @@ TEST(Refinement, KeepsTheUnseenSideOfAPartialViewAtTheSpacesPrediction) {
   space_settings.viewpoint = fine_settings.viewpoint = view.viewpoint;
   const RegistrationResult space = register_observation(setup().model, view.points, space_settings);
   const RegistrationResult fine = register_observation(setup().model, view.points, fine_settings);
-  // Stated: points more than 10% of the diagonal (two kernel widths) behind the view's middle stay within
-  // 1.5% of the diagonal of where the space put them (measured 0.55% and 0.90% in runs whose parallel sums
-  // ran in different orders; the space fit's own error is 2.5%, plain CPD's change below 54%).
-  const double change = far_side_change(space.deformed, fine.deformed, 0.1);
+  // Stated: points more than one gate and one kernel width (15% of the diagonal) behind the view's middle
+  // stay within 1.5% of the diagonal of where the space put them. A fitted point up to one gate behind the
+  // middle may still be within the gate of the observation, so it counts as seen; the field fades over a
+  // kernel width beyond. Measured 0.53% (1.6% at 10% behind; with the earlier gate of 0.05, 0.55-0.90% at
+  // 10%); the space fit's own error is 2.5%, plain CPD's change below 52%.
+  const RefinementSettings defaults;
+  const double margin = defaults.gate + defaults.beta;
+  const double change = far_side_change(space.deformed, fine.deformed, margin);
   std::cout << "far side moved at most " << change << " of the diagonal\n";
   EXPECT_LT(change, 0.015);
   EXPECT_LT(fine.refinement.observed, fine.refinement.points * 3 / 4);
@@ -147,7 +153,7 @@ TEST(Refinement, KeepsTheUnseenSideOfAPartialViewAtTheSpacesPrediction) {
   plain.normalize = false;
   const double scale = setup().model.normalization.scale;
   const Points moved = register_nonrigid(space.deformed / scale, view.points / scale, plain).moved * scale;
-  const double plain_change = far_side_change(space.deformed, moved, 0.1);
+  const double plain_change = far_side_change(space.deformed, moved, margin);
   std::cout << "plain CPD moved the far side by " << plain_change << " of the diagonal\n";
   EXPECT_GT(plain_change, 0.02);
 }
@@ -225,8 +231,32 @@ TEST(Refinement, MeshesPointsAndFramesFollowIt) {
 // A mug's surface in normalised size (no model: the refinement alone needs none).
 Points mug_points() {
   const std::vector<SyntheticInstance> mugs = make_synthetic_category(SyntheticCategory::mug, 1, 31);
-  const Points points = sample_correspondences(SyntheticCategory::mug, mugs[0].shape_parameters, 600, 5).points;
+  const Points points =
+      sample_correspondences(SyntheticCategory::mug, mugs[0].shape_parameters, 600, 5).points;
   return Normalization::fit(points).apply(points);
+}
+
+TEST(Refinement, ReachesSurfaceTheSpaceFitMissedByMoreThanHalfAGate) {
+  // A space fit that missed one region of a full view by 7% of the diagonal (a bump the space cannot make, a
+  // fifth of the diagonal wide). Points within the gate of the observation are the observed ones: at the
+  // default gate (0.1) the bump's points take part and follow it; at half of it they count as unseen and are
+  // held at the fit, the worst error left where it was (measured on kettles, mugs, drills, bottles:
+  // docs/registration.md).
+  const Points fitted = mug_points();
+  Eigen::Index front = 0;
+  fitted.col(0).maxCoeff(&front);
+  const Points truth = with_bump(fitted, fitted.row(front).transpose(), 0.1, 0.07);
+  const auto bump_error = [&](const RefinementSettings& settings) {
+    const Points refined = fitted + refine_fit(fitted, truth, std::nullopt, settings).displacement_at(fitted);
+    return (refined.row(front) - truth.row(front)).norm();
+  };
+  RefinementSettings half_gate;
+  half_gate.gate = 0.5 * RefinementSettings{}.gate;
+  const double at_default = bump_error(RefinementSettings{}), at_half = bump_error(half_gate);
+  std::cout << "bump top off the truth (normalised; 0.07 before): gate " << RefinementSettings{}.gate << " "
+            << at_default << ", gate " << half_gate.gate << " " << at_half << "\n";
+  EXPECT_LT(at_default, 0.02);
+  EXPECT_GT(at_half, 0.04);
 }
 
 TEST(Refinement, NothingObservedNearbyLeavesTheSpaceFit) {

@@ -18,8 +18,8 @@ namespace partreg::core {
 
 /// The refinement's displacement field, in the frame of the points it was fitted to (after the pose).
 struct RefinementField {
-  Points centres;     ///< kernel centres c_l: landmarks of the space fit's points (frame units); none = no field
-  Points weights;     ///< w_l, one row per centre (frame units)
+  Points centres;  ///< kernel centres c_l: landmarks of the space fit's points (frame units); none = no field
+  Points weights;  ///< w_l, one row per centre (frame units)
   double beta = 0.0;  ///< kernel width (frame units)
   int points = 0;     ///< fitted points refined
   int observed = 0;   ///< of those, the ones treated as observed (pulled to the data)
@@ -27,7 +27,7 @@ struct RefinementField {
   /// nearest neighbours' RMS spread off their best plane. Above RefinementSettings::noise_limit the
   /// refinement stands down. 0 when nothing was seen.
   double thickness = 0.0;
-  int matched = 0;  ///< observed points within two gates of the fit, the ones the E-step matched
+  int matched = 0;  ///< observed points the E-step matched: all but the strays (far from the fit and alone)
   int iterations = 0;  ///< EM iterations run
   double seconds = 0.0;
   /// How far the field moved the fitted points: mean and largest |v(p)| over them, in normalised length (the
@@ -50,6 +50,7 @@ struct RefinementField {
 /// refine: the field comes back empty. InputError for fewer than 10 or non-finite points in either set;
 /// UsageError for settings out of range.
 RefinementField refine_fit(const Points& fitted, const Points& observed,
-                           const std::optional<Eigen::Vector3d>& viewpoint, const RefinementSettings& settings);
+                           const std::optional<Eigen::Vector3d>& viewpoint,
+                           const RefinementSettings& settings);
 
 }  // namespace partreg::core

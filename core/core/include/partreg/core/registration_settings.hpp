@@ -74,11 +74,11 @@ struct InitialisationSettings {
   /// Tilts of the up axis tried, up to this (radians, [0, pi]; 0 = none). 1 rad keeps the rotation sweep
   /// flat up to the paper's 0.65 rad turns about every axis, which tilt the up axis by up to 0.9 rad.
   double max_tilt = 1.0;
-  bool any_rotation = false;          ///< an unknown up axis: base rotations spread over SO(3)
+  bool any_rotation = false;  ///< an unknown up axis: base rotations spread over SO(3)
   /// The category's up axis (canonical frame, any length > 0); unset: the model's own (CategoryModel::up,
   /// given to `partreg train --up`).
   std::optional<Eigen::Vector3d> up;
-  int screening_iterations = 3;                 ///< outer steps every hypothesis gets before the first cut
+  int screening_iterations = 3;  ///< outer steps every hypothesis gets before the first cut
   /// The screening rounds match farthest-point subsets of this many canonical and observed points; the
   /// finalists then run on all of them (0 = screen on all). Measured: docs/registration.md.
   int screening_points = 300;
@@ -91,7 +91,8 @@ struct ConvergenceSettings {
   int outer_iterations = 25;  ///< correspondence refreshes at most
   int inner_iterations = 4;   ///< Ceres iterations per refresh
   /// Stop when the cost changes by less than this, relatively, or nothing moves. 1e-4 rather than 1e-5: the
-  /// last steps before 1e-5 creep (a few pairs change each step) without moving the fit (docs/registration.md).
+  /// last steps before 1e-5 creep (a few pairs change each step) without moving the fit
+  /// (docs/registration.md).
   double tolerance = 1e-4;
 };
 
@@ -112,12 +113,15 @@ struct RefinementSettings {
   /// Off: the result is the space fit. On by default: it measures better on full and partial views of mugs,
   /// bowls and drills (docs/registration.md).
   bool enabled = true;
-  double beta = 0.05;    ///< width of the refinement's Gaussian kernel (normalised length): the finest detail
-  double lambda = 1.0;   ///< motion coherence: weight of the field's smoothness against the data (unitless)
+  double beta = 0.05;   ///< width of the refinement's Gaussian kernel (normalised length): the finest detail
+  double lambda = 1.0;  ///< motion coherence: weight of the field's smoothness against the data (unitless)
   /// Pull of an unobserved canonical point back to the space's prediction, in units of an observed point's
   /// mean posterior mass (so 1 holds it as firmly as data holds an observed point).
   double anchor = 1.0;
-  double gate = 0.05;           ///< farther than this from every observed point is unobserved (normalised length)
+  /// Farther than this from every observed point is unobserved (normalised length). Twice the kernel width:
+  /// a point the space fit left 5-10% off a surface the sensor saw is the worst error there, and the
+  /// refinement is there to reach it (docs/registration.md).
+  double gate = 0.1;
   double outlier_weight = 0.1;  ///< CPD's w in [0, 1): share of the observation explained by uniform noise
   int iterations = 20;          ///< EM iterations at most
   /// The refinement stands down when the observed surface is thicker than this (normalised length; the
