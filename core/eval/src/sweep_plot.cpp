@@ -18,11 +18,13 @@ struct Rgb {
   double r, g, b;
 };
 
-// Okabe-Ito colours (colour-blind safe), one per variant in the paper's order.
+// Okabe-Ito colours (colour-blind safe), one per variant in the paper's order, then ours.
 Rgb variant_colour(const std::string& variant) {
   if (variant == "holistic") return {0.0, 0.447, 0.698};  // blue
   if (variant == "partwise") return {0.902, 0.624, 0.0};  // orange
-  return {0.0, 0.62, 0.451};                              // bluish green: hol+part
+  if (variant == "hol+part") return {0.0, 0.62, 0.451};   // bluish green
+  if (variant == "coupled") return {0.835, 0.369, 0.0};   // vermillion
+  return {0.8, 0.475, 0.655};                             // reddish purple: anything else
 }
 
 std::string axis_label(Perturbation kind) {
