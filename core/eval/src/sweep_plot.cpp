@@ -3,12 +3,14 @@
 #include <cairo.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <iomanip>
 #include <limits>
 #include <sstream>
 
 #include "partreg/core/errors.hpp"
+#include "partreg/core/registration_settings.hpp"
 #include "partreg/eval/report.hpp"
 
 namespace partreg::eval {
@@ -18,13 +20,18 @@ struct Rgb {
   double r, g, b;
 };
 
-// Okabe-Ito colours (colour-blind safe), one per variant in the paper's order, then ours.
+// Okabe-Ito colours (colour-blind safe), one per variant in the order of core::Variant's name table (the
+// paper's three, then coupled), so a new variant gets the next colour; anything else takes the last.
 Rgb variant_colour(const std::string& variant) {
-  if (variant == "holistic") return {0.0, 0.447, 0.698};  // blue
-  if (variant == "partwise") return {0.902, 0.624, 0.0};  // orange
-  if (variant == "hol+part") return {0.0, 0.62, 0.451};   // bluish green
-  if (variant == "coupled") return {0.835, 0.369, 0.0};   // vermillion
-  return {0.8, 0.475, 0.655};                             // reddish purple: anything else
+  static constexpr std::array<Rgb, 5> palette{{{0.0, 0.447, 0.698},    // blue
+                                               {0.902, 0.624, 0.0},    // orange
+                                               {0.0, 0.62, 0.451},     // bluish green
+                                               {0.835, 0.369, 0.0},    // vermillion
+                                               {0.8, 0.475, 0.655}}};  // reddish purple
+  const std::vector<std::string> variants = core::enum_names<core::Variant>();
+  const auto index =
+      static_cast<std::size_t>(std::find(variants.begin(), variants.end(), variant) - variants.begin());
+  return palette[std::min(index, palette.size() - 1)];
 }
 
 std::string axis_label(Perturbation kind) {
