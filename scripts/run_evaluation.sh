@@ -23,15 +23,18 @@ run() {  # run NAME DATASET [extra eval options...]
 if [ -d "$data" ]; then
   run kettles "$data/kettles"
   run mugs "$data/mugs" --labels assets/labels/1a97f3c83016abca21d0de04f408950f.labels.json
-  for category in drills bowls bottles spatulas; do run "$category" "$data/$category"; done
+  run drills "$data/drills" --up 0,0,1  # drills stand on z (their README); the others are y up
+  for category in bowls bottles spatulas; do run "$category" "$data/$category"; done
 else
   echo "run_evaluation: $data is absent: only the synthetic categories are evaluated" >&2
 fi
 if [ "${PARTREG_EVAL_SYNTHETIC:-1}" = 1 ]; then
   "$partreg" synth mug --instances 8 --seed 1 --out "$out/synthetic/synthetic_mugs"
   "$partreg" synth spray_bottle --instances 8 --seed 1 --out "$out/synthetic/synthetic_spray_bottles"
+  "$partreg" synth drill --instances 8 --seed 1 --out "$out/synthetic/synthetic_drills"
   run synthetic_mugs "$out/synthetic/synthetic_mugs"
   run synthetic_spray_bottles "$out/synthetic/synthetic_spray_bottles"
+  run synthetic_drills "$out/synthetic/synthetic_drills"
 fi
 "$partreg" report "$out"/runs/* --out "$out/report"
 echo "report: $out/report/tables.md and $out/report/*.png" >&2

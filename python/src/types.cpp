@@ -174,7 +174,9 @@ void bind_registration_result(py::module_& m) {
       .def_readonly("mean", &core::FitStatistics::mean, "data units")
       .def_readonly("p90", &core::FitStatistics::p90, "90th percentile, data units")
       .def_readonly("mean_normalised", &core::FitStatistics::mean_normalised, "mean / the model's diagonal")
-      .def_readonly("p90_normalised", &core::FitStatistics::p90_normalised, "p90 / the model's diagonal");
+      .def_readonly("p90_normalised", &core::FitStatistics::p90_normalised, "p90 / the model's diagonal")
+      .def_readonly("strays", &core::FitStatistics::strays,
+                    "observed points left out as strays before the fit (setting stray_limit)");
   py::class_<core::SpaceFit>(m, "SpaceFit", "The fit of one shape space.")
       .def_readonly("space", &core::SpaceFit::space)
       .def_property_readonly("latent", [](const core::SpaceFit& s) { return copy_vector(s.latent); }, "(q,)")

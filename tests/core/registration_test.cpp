@@ -206,6 +206,29 @@ TEST(Registration, AFrameOnTheHandleLandsOnTheHeldOutHandle) {
             testing::rotation_error_deg(unmoved.rotation, truth.rotation));
 }
 
+// Three points far off the held-out mug (a speck of dust, two stray returns) are counted and left out. The
+// mug's own samples are spread unevenly (uniform in its parameters, not its area): the sparsest of them stand
+// alone too, and those the fit misses by more than kStrayReach count as strays as well. With the limit at 0
+// every point is matched.
+TEST(Registration, LeavesStrayPointsOutAndCountsThem) {
+  const double diagonal = setup().model.normalization.scale;
+  Points observed(setup().held_out.points.rows() + 3, 3);
+  observed.topRows(setup().held_out.points.rows()) = setup().held_out.points;
+  observed.bottomRows(3) << 0.6, 0.0, 0.0, 0.0, -0.7, 0.1, 0.3, 0.5, -0.5;
+  observed.bottomRows(3) *= diagonal;
+  RegistrationSettings settings;
+  settings.refinement.enabled = false;
+  settings.initialisation.restarts = 1;
+  const int mug_alone = register_observation(setup().model, setup().held_out.points, settings).fit.strays;
+  const int with_three = register_observation(setup().model, observed, settings).fit.strays;
+  std::cout << "strays: the mug's 1500 samples " << mug_alone << ", with three far points " << with_three << "\n";
+  EXPECT_LT(mug_alone, 1500 / 20);  // 27 measured
+  EXPECT_GE(with_three, mug_alone + 3);
+  EXPECT_LE(with_three, mug_alone + 6);  // the fit moves a little: 31 measured
+  settings.sampling.stray_limit = 0.0;
+  EXPECT_EQ(register_observation(setup().model, observed, settings).fit.strays, 0);
+}
+
 TEST(Registration, RefusesBadObservations) {
   EXPECT_THROW(register_observation(setup().model, Points::Random(5, 3)), InputError);
   Points with_nan = setup().held_out.points;

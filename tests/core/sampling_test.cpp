@@ -4,6 +4,7 @@
 
 #include <gtest/gtest.h>
 
+#include <iostream>
 #include <random>
 #include <set>
 
@@ -132,6 +133,40 @@ TEST(FarthestPointSampling, NoRowTwiceWhenTheDistinctPositionsRunOut) {
   const Points points = tripled_points();
   expect_farthest_point_order(points, farthest_point_indices(points, 90, 0), 0);
   expect_farthest_point_order(points, farthest_point_indices(points, 45, 7), 7);
+}
+
+// A sphere's surface, four times denser on one half, with uniform outliers in the box twice its size (the
+// paper's 20%): every surface point has company, the outliers off the surface do not.
+TEST(RowsWithNeighbours, LeaveOutUniformOutliersAndKeepASurfaceOfUnevenDensity) {
+  std::mt19937_64 generator(5);
+  std::normal_distribution<double> normal;
+  std::uniform_real_distribution<double> uniform(-1.0, 1.0);
+  Points points(2400, 3);
+  for (Eigen::Index i = 0; i < 2000; ++i) {
+    Eigen::Vector3d p(normal(generator), normal(generator), normal(generator));
+    if (i % 4 == 0) p.x() = std::abs(p.x());  // 25% on the x > 0 half, 75% on x < 0: three times as dense
+    else p.x() = -std::abs(p.x());
+    points.row(i) = 0.5 * p.normalized().transpose();
+  }
+  for (Eigen::Index i = 2000; i < 2400; ++i)
+    points.row(i) = Eigen::RowVector3d(uniform(generator), uniform(generator), uniform(generator));
+  const std::vector<int> kept = rows_with_neighbours(points, 2, 3.0);  // registration's choice
+  const std::set<int> kept_set(kept.begin(), kept.end());
+  int surface_kept = 0, outliers_off_surface = 0, outliers_kept = 0;
+  for (Eigen::Index i = 0; i < 2000; ++i) surface_kept += kept_set.count(static_cast<int>(i));
+  for (Eigen::Index i = 2000; i < 2400; ++i) {
+    if (std::abs(points.row(i).norm() - 0.5) < 0.1) continue;  // on the surface: indistinguishable
+    ++outliers_off_surface;
+    outliers_kept += kept_set.count(static_cast<int>(i));
+  }
+  std::cerr << "surface kept " << surface_kept << " of 2000; outliers off it kept " << outliers_kept << " of "
+            << outliers_off_surface << "\n";
+  EXPECT_GE(surface_kept, 1995);  // 2000 measured: the thin half stays (four times thinner: 1992)
+  EXPECT_LE(outliers_kept, outliers_off_surface / 20);  // 2 of 364 measured
+  EXPECT_TRUE(std::is_sorted(kept.begin(), kept.end()));
+  EXPECT_EQ(rows_with_neighbours(points, 2, 0.0).size(), 2400u);  // 0: every row
+  EXPECT_EQ(rows_with_neighbours(points.topRows(3), 2, 3.0).size(), 3u);  // too few to judge: every row
+  EXPECT_EQ(rows_with_neighbours(Points::Zero(50, 3), 2, 3.0).size(), 50u);  // no spacing to judge by
 }
 
 TEST(SelectRows, CopiesTheListedRowsInOrder) {

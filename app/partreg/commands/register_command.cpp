@@ -145,6 +145,9 @@ void run_register(const RegisterOptions& options) {
   std::cerr << core::enum_name(result.variant) << ": mean closest-point distance " << result.fit.mean
             << " (data units), " << result.fit.mean_normalised << " of the model's diagonal; 90th percentile "
             << result.fit.p90 << "; " << result.seconds << " s\n";
+  if (result.fit.strays > 0)
+    std::cerr << "  " << result.fit.strays
+              << " observed points stood alone, far from the fit, and were left out (stray-limit)\n";
   nlohmann::json report =
       io::result_json(result, options.settings, {options.model_path, options.observed_path});
   if (result.variant != core::Variant::holistic) {

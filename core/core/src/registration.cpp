@@ -22,6 +22,33 @@ using detail::Observation;
 using detail::Pose;
 using detail::SpaceSolution;
 
+// A point stands alone when its second nearest neighbour is farther than the stray limit times the median:
+// the fewer the neighbours, the more a uniform outlier stands out against a surface (its distance grows as
+// k^(1/3), a surface's as k^(1/2)), and two outliers seldom fall close together (docs/registration.md,
+// "Strays").
+constexpr int kStrayNeighbours = 2;
+
+// The rows of `points` that registration matches: farthest points among those with company (farthest
+// points of a set with strays would favour the strays: the paper's 20% outliers became 40% of the subset),
+// then every row that stands alone, flagged in `alone`. Those are matched only while the fit passes near
+// (detail::is_stray): a thinly seen handle is surface, a speck of dust is not.
+std::vector<int> matched_rows(const Points& points, const SamplingSettings& sampling, std::vector<bool>& alone) {
+  const std::vector<int> with_company = rows_with_neighbours(points, kStrayNeighbours, sampling.stray_limit);
+  std::vector<int> rows = subsample_indices(select_rows(points, with_company),
+                                            static_cast<std::size_t>(sampling.observed_points), 0.0);
+  for (int& row : rows) row = with_company[static_cast<std::size_t>(row)];
+  std::vector<bool> has_company(static_cast<std::size_t>(points.rows()), false);
+  for (int row : with_company) has_company[static_cast<std::size_t>(row)] = true;
+  alone.assign(rows.size(), false);
+  for (Eigen::Index n = 0; n < points.rows(); ++n)
+    if (!has_company[static_cast<std::size_t>(n)]) {
+      rows.push_back(static_cast<int>(n));
+      alone.push_back(true);
+    }
+  if (with_company.size() == static_cast<std::size_t>(points.rows())) alone.clear();  // none stands alone
+  return rows;
+}
+
 detail::Observation prepare_observation(const CategoryModel& model, const Points& observed,
                                         const RegistrationSettings& settings, Eigen::Vector3d& centroid) {
   if (observed.rows() < 10)
@@ -35,10 +62,13 @@ detail::Observation prepare_observation(const CategoryModel& model, const Points
   centroid = observed.colwise().mean().transpose();
   Observation observation;
   const Points normalised = (observed.rowwise() - centroid.transpose()) / model.normalization.scale;
-  // A voxel pre-pass, then farthest points (sampling.hpp); every point is kept as it is when few enough.
-  observation.points = select_rows(
-      normalised, subsample_indices(normalised, static_cast<std::size_t>(settings.sampling.observed_points),
-                                    settings.sampling.voxel_size));
+  // A voxel pre-pass when there are more points than a step matches (a depth camera's million points cost
+  // O(N)), then the matched rows; every point is kept as it is when few enough.
+  const Points candidates =
+      normalised.rows() > settings.sampling.observed_points && settings.sampling.voxel_size > 0.0
+          ? select_rows(normalised, voxel_representatives(normalised, settings.sampling.voxel_size))
+          : normalised;
+  observation.points = select_rows(candidates, matched_rows(candidates, settings.sampling, observation.alone));
   observation.tree = std::make_unique<KdTree>(observation.points);
   if (settings.viewpoint)
     observation.viewpoint = (*settings.viewpoint - centroid) / model.normalization.scale;
@@ -99,8 +129,31 @@ std::vector<Observation> split_observation(const CategoryModel& model, const Obs
     split[p].points = select_rows(observation.points, rows[p]);
     split[p].tree = std::make_unique<KdTree>(split[p].points);
     split[p].viewpoint = observation.viewpoint;
+    if (!observation.alone.empty())
+      for (int n : rows[p]) split[p].alone.push_back(observation.alone[static_cast<std::size_t>(n)]);
   }
   return split;
+}
+
+// The rows of the observation that are not strays of `fitted` (detail::is_stray).
+std::vector<int> rows_near(const Observation& observation, const Points& fitted) {
+  std::vector<int> rows;
+  const KdTree tree(fitted);
+  for (Eigen::Index n = 0; n < observation.points.rows(); ++n)
+    if (observation.alone.empty() || !observation.alone[static_cast<std::size_t>(n)] ||
+        !detail::is_stray(observation, n, tree.nearest(observation.points.row(n).transpose()).second))
+      rows.push_back(static_cast<int>(n));
+  return rows;
+}
+
+// The observation the refinement follows: the space fit's strays left out, as the fit left them out.
+Points without_strays(const Observation& observation, const Points& fitted) {
+  return observation.alone.empty() ? observation.points : select_rows(observation.points, rows_near(observation, fitted));
+}
+
+// Observed points the final fit left out.
+int count_strays(const Observation& observation, const Points& fitted) {
+  return static_cast<int>(observation.points.rows()) - static_cast<int>(rows_near(observation, fitted).size());
 }
 
 FitStatistics fit_statistics(const Points& deformed, const Points& observed, double scale) {
@@ -215,14 +268,15 @@ RegistrationResult register_observation(const CategoryModel& model, const Points
     }
   }
   if (settings.refinement.enabled) {
-    const RefinementField field =
-        refine_fit(deformed_normalised, observation.points, observation.viewpoint, settings.refinement);
+    const RefinementField field = refine_fit(deformed_normalised, without_strays(observation, deformed_normalised),
+                                             observation.viewpoint, settings.refinement);
     deformed_normalised += field.displacement_at(deformed_normalised);
     result.refinement = field.transformed(model.normalization.scale, centroid);
   }
   result.deformed = (deformed_normalised * model.normalization.scale).rowwise() + centroid.transpose();
   result.part = model.canonical_part;
   result.fit = fit_statistics(result.deformed, observed, model.normalization.scale);
+  result.fit.strays = count_strays(observation, deformed_normalised);
   result.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return result;
 }

@@ -119,6 +119,10 @@ std::vector<RegistrationOption> make_options() {
       Make::real(
           "voxel-size", "voxel pre-pass before the farthest-point subset (normalised length; 0 = none)", 0.0,
           1.0, [](auto& s) -> auto& { return s.sampling.voxel_size; }),
+      Make::real(
+          "stray-limit",
+          "an observed point whose 2nd neighbour is this many times the median away is matched only near the fit",
+          0.0, 1000.0, [](auto& s) -> auto& { return s.sampling.stray_limit; }),
       Make::flag(
           "refine", "a non-rigid fit beyond the shape space where the observation was seen",
           [](auto& s) -> auto& { return s.refinement.enabled; }),

@@ -135,18 +135,43 @@ std::vector<int> voxel_representatives(const Points& points, double voxel_size) 
   return best;
 }
 
+namespace {
+
+std::vector<int> all_rows(const Points& points) {
+  std::vector<int> all(static_cast<std::size_t>(points.rows()));
+  for (std::size_t i = 0; i < all.size(); ++i) all[i] = static_cast<int>(i);
+  return all;
+}
+
+}  // namespace
+
 std::vector<int> subsample_indices(const Points& points, std::size_t count, double voxel_size) {
-  if (static_cast<Eigen::Index>(count) >= points.rows()) {
-    std::vector<int> all(static_cast<std::size_t>(points.rows()));
-    for (std::size_t i = 0; i < all.size(); ++i) all[i] = static_cast<int>(i);
-    return all;
-  }
+  if (static_cast<Eigen::Index>(count) >= points.rows()) return all_rows(points);
   if (voxel_size <= 0.0) return farthest_point_indices(points, count);
   const std::vector<int> kept = voxel_representatives(points, voxel_size);
   if (kept.size() <= count) return kept;
   std::vector<int> chosen = farthest_point_indices(select_rows(points, kept), count);
   for (int& row : chosen) row = kept[static_cast<std::size_t>(row)];
   return chosen;
+}
+
+std::vector<int> rows_with_neighbours(const Points& points, int neighbours, double limit) {
+  std::vector<int> all = all_rows(points);
+  if (!(limit > 0.0) || neighbours < 1 || points.rows() <= neighbours + 1) return all;
+  const KdTree tree(points);
+  // Squared distance to the `neighbours`-th nearest other row (the row itself comes first, at 0).
+  std::vector<double> reach(all.size());
+  for (Eigen::Index i = 0; i < points.rows(); ++i)
+    reach[static_cast<std::size_t>(i)] = tree.nearest_k(points.row(i).transpose(), neighbours + 1).back().second;
+  std::vector<double> sorted = reach;
+  const auto middle = sorted.begin() + static_cast<long>(sorted.size() / 2);
+  std::nth_element(sorted.begin(), middle, sorted.end());
+  if (!(*middle > 0.0)) return all;  // mostly repeated points: no spacing to judge by
+  const double squared_limit = limit * limit * *middle;
+  std::vector<int> kept;
+  for (int row : all)
+    if (reach[static_cast<std::size_t>(row)] <= squared_limit) kept.push_back(row);
+  return kept;
 }
 
 Points select_rows(const Points& points, const std::vector<int>& rows) {

@@ -25,6 +25,11 @@ void trim(std::vector<Pair>& pairs, double fraction) {
 
 }  // namespace
 
+bool is_stray(const Observation& observation, Eigen::Index n, double squared_distance) {
+  return !observation.alone.empty() && observation.alone[static_cast<std::size_t>(n)] &&
+         squared_distance > kStrayReach * kStrayReach;
+}
+
 Correspondences correspond(const Points& posed, const std::vector<bool>& visible,
                            const Observation& observation, const RegistrationSettings& settings,
                            CorrespondenceHints* hints) {
@@ -61,6 +66,7 @@ Correspondences correspond(const Points& posed, const std::vector<bool>& visible
       const Eigen::Vector3d query = observation.points.row(n).transpose();
       const auto [i, squared] = hint >= 0 ? tree.nearest(query, hint) : tree.nearest(query);
       row = active[static_cast<std::size_t>(i)];
+      if (is_stray(observation, n, squared)) continue;
       result.from_observed.push_back({row, query, squared});
     }
   }

@@ -22,7 +22,16 @@ struct Observation {
   Points points;                             ///< downsampled, normalised
   std::unique_ptr<KdTree> tree;              ///< over `points`
   std::optional<Eigen::Vector3d> viewpoint;  ///< normalised observed frame
+  /// Per point: it stands alone (sampling.hpp's rows_with_neighbours left it out). Such a point is matched only
+  /// while the fit passes within kStrayReach of it; empty: none stands alone.
+  std::vector<bool> alone;
 };
+
+/// An observed point that stands alone and is farther than this from the fit (normalised length) is a stray:
+/// neither the space fit nor the refinement matches it. A thinly seen surface (a handle edge-on) lies within
+/// it once the fit is near; most outliers off the surface do not. About the space fit's own error on a partial
+/// view; chosen, not tuned (docs/registration.md, "Strays").
+constexpr double kStrayReach = 0.03;
 
 /// A similarity in normalised units: observed = scale * rotation * canonical + translation.
 struct Pose {
@@ -63,6 +72,9 @@ struct CorrespondenceHints {
   std::vector<int> observed_of_row;  ///< per posed row: its last nearest observed point (-1: none yet)
   std::vector<int> row_of_observed;  ///< per observed point: its last nearest posed row (-1: none yet)
 };
+
+/// Whether observed point `n`, at `squared_distance` from the fit, is a stray (Observation::alone).
+bool is_stray(const Observation& observation, Eigen::Index n, double squared_distance);
 
 /// The closest-point pairs between the `visible` rows of `posed` and the observation, in the directions the
 /// objective sums over, trimmed when the loss is trimmed. `hints` (optional) is read and updated.

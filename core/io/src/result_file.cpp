@@ -68,7 +68,8 @@ nlohmann::json result_json(const core::RegistrationResult& result, const core::R
            {{"mean", result.fit.mean},
             {"p90", result.fit.p90},
             {"mean_normalised", result.fit.mean_normalised},
-            {"p90_normalised", result.fit.p90_normalised}}},
+            {"p90_normalised", result.fit.p90_normalised},
+            {"strays", result.fit.strays}}},
           {"refinement", refinement_json(result.refinement, settings.refinement)},
           {"seconds", result.seconds}};
 }

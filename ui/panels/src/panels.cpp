@@ -275,6 +275,7 @@ void registration_panel(const AppState& state, PanelState& panel, std::vector<Co
     ImGui::Text("space %s  cost %.4g  at %.3f s", h.space.c_str(), h.cost, h.seconds);
   }
   ImGui::Text("fit: mean %.4g, p90 %.4g (data units)", result.fit.mean, result.fit.p90);
+  if (result.fit.strays > 0) ImGui::Text("%d observed points left out as strays", result.fit.strays);
   input_text("##result", panel.result_folder);
   ImGui::SameLine();
   if (ImGui::Button("Save result")) emit(out, "save_result", {panel.result_folder});

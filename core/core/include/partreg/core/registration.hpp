@@ -65,6 +65,7 @@ struct HistoryStep {
 struct FitStatistics {
   double mean = 0.0, p90 = 0.0;                        ///< data units
   double mean_normalised = 0.0, p90_normalised = 0.0;  ///< divided by the model's diagonal
+  int strays = 0;  ///< observed points left out as strays (SamplingSettings::stray_limit): no part of the fit
 };
 
 struct RegistrationResult {

@@ -103,6 +103,11 @@ struct SamplingSettings {
   /// shrinks to one point per voxel in O(N) first. 0.004 is about a fifth of the spacing of 2000 points on
   /// a unit object, so it changes the subset little (docs/benchmarks.md, registration subsampling).
   double voxel_size = 0.004;
+  /// An observed point whose second nearest neighbour is farther than this many times the median such
+  /// distance over the observation stands alone and is left out (0 = keep every point). Farthest-point
+  /// sampling favours exactly such points, and each one pulls the fit at every step: at the paper's 20%
+  /// outliers they made the deformed canonical worse than the rigid one (docs/registration.md, "Strays").
+  double stray_limit = 3.0;
 };
 
 /// A fit beyond the shape space (refinement.hpp): after the space fit, a non-rigid CPD whose field lives on
