@@ -32,7 +32,8 @@ constexpr int kStrayNeighbours = 2;
 // points of a set with strays would favour the strays: the paper's 20% outliers became 40% of the subset),
 // then every row that stands alone, flagged in `alone`. Those are matched only while the fit passes near
 // (detail::is_stray): a thinly seen handle is surface, a speck of dust is not.
-std::vector<int> matched_rows(const Points& points, const SamplingSettings& sampling, std::vector<bool>& alone) {
+std::vector<int> matched_rows(const Points& points, const SamplingSettings& sampling,
+                              std::vector<bool>& alone) {
   const std::vector<int> with_company = rows_with_neighbours(points, kStrayNeighbours, sampling.stray_limit);
   std::vector<int> rows = subsample_indices(select_rows(points, with_company),
                                             static_cast<std::size_t>(sampling.observed_points), 0.0);
@@ -148,10 +149,11 @@ std::vector<int> rows_near(const Observation& observation, const Points& fitted)
 
 // The observation the refinement follows: the space fit's strays left out, as the fit left them out.
 Points without_strays(const Observation& observation, const Points& fitted) {
-  return observation.alone.empty() ? observation.points : select_rows(observation.points, rows_near(observation, fitted));
+  return observation.alone.empty() ? observation.points
+                                   : select_rows(observation.points, rows_near(observation, fitted));
 }
 
-// Observed points the final fit left out.
+// Observed points the final fit left out (FitStatistics::strays).
 int count_strays(const Observation& observation, const Points& fitted) {
   return static_cast<int>(observation.points.rows()) - static_cast<int>(rows_near(observation, fitted).size());
 }
@@ -268,8 +270,9 @@ RegistrationResult register_observation(const CategoryModel& model, const Points
     }
   }
   if (settings.refinement.enabled) {
-    const RefinementField field = refine_fit(deformed_normalised, without_strays(observation, deformed_normalised),
-                                             observation.viewpoint, settings.refinement);
+    const RefinementField field =
+        refine_fit(deformed_normalised, without_strays(observation, deformed_normalised), observation.viewpoint,
+                   settings.refinement);
     deformed_normalised += field.displacement_at(deformed_normalised);
     result.refinement = field.transformed(model.normalization.scale, centroid);
   }

@@ -104,9 +104,10 @@ struct SamplingSettings {
   /// a unit object, so it changes the subset little (docs/benchmarks.md, registration subsampling).
   double voxel_size = 0.004;
   /// An observed point whose second nearest neighbour is farther than this many times the median such
-  /// distance over the observation stands alone and is left out (0 = keep every point). Farthest-point
-  /// sampling favours exactly such points, and each one pulls the fit at every step: at the paper's 20%
-  /// outliers they made the deformed canonical worse than the rigid one (docs/registration.md, "Strays").
+  /// distance over the observation stands alone: it is kept out of the farthest-point subset and matched only
+  /// while the fit passes within 0.03 of it (0 = every point always). Farthest-point sampling favoured such
+  /// points, and each pulled the fit at every step: at the paper's 20% outliers the deformed canonical was
+  /// worse than the rigid one (docs/registration.md, "Strays").
   double stray_limit = 3.0;
 };
 
