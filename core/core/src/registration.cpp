@@ -3,6 +3,7 @@
 #include <Eigen/Eigenvalues>
 #include <chrono>
 #include <numeric>
+#include <optional>
 
 #include "partreg/core/errors.hpp"
 #include "partreg/core/kdtree.hpp"
@@ -136,13 +137,15 @@ std::vector<Observation> split_observation(const CategoryModel& model, const Obs
   return split;
 }
 
-// The rows of the observation that are not strays of `fitted` (detail::is_stray).
+// The rows of the observation that are not strays of `fitted` (detail::is_stray); only the points that stand
+// alone are looked up, and no tree is built when none does.
 std::vector<int> rows_near(const Observation& observation, const Points& fitted) {
   std::vector<int> rows;
-  const KdTree tree(fitted);
+  const std::optional<KdTree> tree =
+      observation.alone.empty() ? std::nullopt : std::optional<KdTree>(std::in_place, fitted);
   for (Eigen::Index n = 0; n < observation.points.rows(); ++n)
-    if (observation.alone.empty() || !observation.alone[static_cast<std::size_t>(n)] ||
-        !detail::is_stray(observation, n, tree.nearest(observation.points.row(n).transpose()).second))
+    if (!tree || !observation.alone[static_cast<std::size_t>(n)] ||
+        !detail::is_stray(observation, n, tree->nearest(observation.points.row(n).transpose()).second))
       rows.push_back(static_cast<int>(n));
   return rows;
 }
@@ -155,7 +158,9 @@ Points without_strays(const Observation& observation, const Points& fitted) {
 
 // Observed points the final fit left out (FitStatistics::strays).
 int count_strays(const Observation& observation, const Points& fitted) {
-  return static_cast<int>(observation.points.rows()) - static_cast<int>(rows_near(observation, fitted).size());
+  return observation.alone.empty() ? 0
+                                   : static_cast<int>(observation.points.rows() -
+                                                      static_cast<Eigen::Index>(rows_near(observation, fitted).size()));
 }
 
 FitStatistics fit_statistics(const Points& deformed, const Points& observed, double scale) {
