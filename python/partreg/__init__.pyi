@@ -141,7 +141,8 @@ class Refinement:
     points: int
     observed: int
     matched: int
-    thickness: float
+    noise: float
+    width: float
     iterations: int
     seconds: float
     mean_movement: float

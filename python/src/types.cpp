@@ -198,14 +198,16 @@ void bind_registration_result(py::module_& m) {
       .def_readonly("seconds", &core::HistoryStep::seconds, "since the start of this space's registration");
   py::class_<core::RefinementField>(m, "Refinement", "What the fit beyond the shape space did (refine=True).")
       .def_property_readonly("applied", [](const core::RefinementField& s) { return !s.empty(); },
-                             "False when it was off, saw fewer than 10 observed points, or stood down because "
-                             "the observation was noisier than noise_limit (the space fit stands)")
+                             "False when it was off or saw fewer than 10 observed points (the space fit stands)")
       .def_readonly("points", &core::RefinementField::points, "fitted points refined (0 when off)")
       .def_readonly("observed", &core::RefinementField::observed, "of those, the ones counted as observed")
       .def_readonly("matched", &core::RefinementField::matched,
                     "observed points the E-step matched (the rest, far from the fit and alone, are strays)")
-      .def_readonly("thickness", &core::RefinementField::thickness,
-                    "how thick the observed surface is (median spread off local planes), / the diagonal")
+      .def_readonly("noise", &core::RefinementField::noise,
+                    "the observation's noise (spread off the fit from point to point), / the model's diagonal")
+      .def_readonly("width", &core::RefinementField::width,
+                    "the kernel width used: refine_beta, or refine_noise_width x noise when wider, / the "
+                    "model's diagonal")
       .def_readonly("iterations", &core::RefinementField::iterations, "EM iterations run")
       .def_readonly("seconds", &core::RefinementField::seconds)
       .def_readonly("mean_movement", &core::RefinementField::mean_movement,

@@ -1,6 +1,7 @@
 // The real `partreg` executable: exit codes, messages and outputs as a user sees them.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <array>
 #include <cstdio>
 #include <fstream>
@@ -166,6 +167,11 @@ TEST_F(Cli, RegisterWritesItsOutputsAndRefusesBadInput) {
   EXPECT_GT(refinement.at("observed").get<int>(), refinement.at("points").get<int>() / 2) << "a full view";
   EXPECT_LE(refinement.at("observed").get<int>(), refinement.at("points").get<int>());
   EXPECT_GE(refinement.at("iterations").get<int>(), 1);
+  // A clean surface (a real mug's two walls read as 0.014); the kernel is refine-beta or 4x the noise.
+  const double noise = refinement.at("noise_normalised").get<double>();
+  EXPECT_GT(noise, 0.0);
+  EXPECT_LT(noise, 0.02);
+  EXPECT_DOUBLE_EQ(refinement.at("kernel_width_normalised").get<double>(), std::max(0.05, 4.0 * noise));
   EXPECT_GT(refinement.at("mean_movement_normalised").get<double>(), 0.0);
   EXPECT_GE(refinement.at("max_movement_normalised").get<double>(),
             refinement.at("mean_movement_normalised").get<double>());

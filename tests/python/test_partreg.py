@@ -85,6 +85,9 @@ def test_register_equals_the_command_line(partreg, registered, cli_register, cli
     for count in ("points", "observed", "iterations"):
         assert getattr(refinement, count) == expected[count]
     assert refinement.mean_movement == pytest.approx(expected["mean_movement_normalised"], rel=EXACT)
+    assert refinement.noise == pytest.approx(expected["noise_normalised"], rel=EXACT)
+    assert refinement.width == pytest.approx(expected["kernel_width_normalised"], rel=EXACT)
+    assert refinement.width >= partreg.registration_defaults()["refine_beta"], "never finer than refine_beta"
     assert refinement.max_movement == pytest.approx(expected["max_movement_normalised"], rel=EXACT)
     # A point moves towards observed points within the refinement's gate (0.1 of the diagonal): by about a
     # gate at most (0.105 on this mug in one run, under 0.1 in another: the parallel sums' order varies),

@@ -145,10 +145,10 @@ std::vector<RegistrationOption> make_options() {
           "refine-iterations", "refinement EM iterations at most", 1, 1000,
           [](auto& s) -> auto& { return s.refinement.iterations; }),
       Make::real(
-          "refine-noise-limit",
-          "the refinement stands down when the observed surface is thicker than this (median spread off "
-          "local planes; normalised length)",
-          1e-4, 10.0, [](auto& s) -> auto& { return s.refinement.noise_limit; }),
+          "refine-noise-width",
+          "the refinement's kernel is at least this many times the observation's noise wide (0 = always "
+          "refine-beta)",
+          0.0, 100.0, [](auto& s) -> auto& { return s.refinement.noise_width; }),
   };
 }
 

@@ -23,10 +23,12 @@ struct RefinementField {
   double beta = 0.0;  ///< kernel width (frame units)
   int points = 0;     ///< fitted points refined
   int observed = 0;   ///< of those, the ones treated as observed (pulled to the data)
-  /// How thick the observed surface is (normalised length): the median over the observed points of their
-  /// nearest neighbours' RMS spread off their best plane. Above RefinementSettings::noise_limit the
-  /// refinement stands down. 0 when nothing was seen.
-  double thickness = 0.0;
+  /// The observation's noise (normalised length): the median over patches of the fit of the spread of the
+  /// observed points' offsets from it. 0 when nothing was seen.
+  double noise = 0.0;
+  /// The kernel width used (normalised length): RefinementSettings::beta, or noise_width x noise when that is
+  /// wider. 0 when nothing was seen.
+  double width = 0.0;
   int matched = 0;  ///< observed points the E-step matched: all but the strays (far from the fit and alone)
   int iterations = 0;  ///< EM iterations run
   double seconds = 0.0;

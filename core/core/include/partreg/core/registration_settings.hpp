@@ -130,10 +130,9 @@ struct RefinementSettings {
   double gate = 0.1;
   double outlier_weight = 0.1;  ///< CPD's w in [0, 1): share of the observation explained by uniform noise
   int iterations = 20;          ///< EM iterations at most
-  /// The refinement stands down when the observed surface is thicker than this (normalised length; the
-  /// median over the observed points of their 16 nearest neighbours' RMS spread off their best plane): the
-  /// cloud is then too noisy for detail finer than the space's. Measured: docs/registration.md.
-  double noise_limit = 0.02;
+  /// The kernel is at least this many times the observation's noise wide (RefinementField::noise; 0 = always
+  /// beta): detail finer than the noise cannot be told from it. Measured: docs/registration.md.
+  double noise_width = 4.0;
 };
 
 /// One registration request.
