@@ -5,7 +5,10 @@
 #include "partreg/core/kdtree.hpp"
 
 namespace partreg::core::detail {
+namespace {
 
+// The scatter matrix (sum of outer products about their mean) of the rows of `points` listed in `neighbours`
+// (index, squared distance pairs, as KdTree returns them), and their mean in `mean`.
 Eigen::Matrix3d neighbourhood_scatter(const Points& points, const std::vector<std::pair<int, double>>& neighbours,
                                       Eigen::Vector3d& mean) {
   mean = Eigen::Vector3d::Zero();
@@ -16,6 +19,8 @@ Eigen::Matrix3d neighbourhood_scatter(const Points& points, const std::vector<st
     scatter += (points.row(j).transpose() - mean) * (points.row(j) - mean.transpose());
   return scatter;
 }
+
+}  // namespace
 
 Points outward_normals(const Points& points, double radius) {
   const KdTree tree(points);
@@ -32,5 +37,7 @@ Points outward_normals(const Points& points, double radius) {
   }
   return normals;
 }
+
+Points canonical_normals(const Points& points) { return outward_normals(points, 0.05); }
 
 }  // namespace partreg::core::detail

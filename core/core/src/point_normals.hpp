@@ -13,9 +13,8 @@ namespace partreg::core::detail {
 /// points), turned away from the set's centroid (right for convex-ish objects; a mug's inner wall is not).
 Points outward_normals(const Points& points, double radius);
 
-/// The scatter matrix (sum of outer products about their mean) of the rows of `points` listed in
-/// `neighbours` (index, squared distance pairs, as KdTree returns them), and their mean in `mean`.
-Eigen::Matrix3d neighbourhood_scatter(const Points& points, const std::vector<std::pair<int, double>>& neighbours,
-                                      Eigen::Vector3d& mean);
+/// outward_normals of canonical points in the normalised frame (the model's diagonal is 1, about 1000
+/// points): a radius of 0.05 spans a few canonical spacings.
+Points canonical_normals(const Points& points);
 
 }  // namespace partreg::core::detail

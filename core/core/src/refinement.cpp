@@ -25,8 +25,6 @@ constexpr double kLandmarkDensity = 0.5;
 constexpr double kTruncation = 2e-3;
 // The smallest starting variance (normalised length squared): an exact fit would otherwise start at zero.
 constexpr double kMinimumSigma2 = 1e-6;
-// Radius (normalised length) of the neighbourhood that gives a fitted point its normal.
-constexpr double kNormalRadius = 0.05;
 // An observed point farther than kStrayDistance from every seen fitted point, with no more than
 // kSurfaceNeighbours other observed points within kSurfaceRadius of it, is a stray: left out of the E-step. A
 // far point with neighbours is surface the space missed, which the refinement is there to reach (a held-out
@@ -89,11 +87,11 @@ double observed_noise(const Points& observed, const Points& fitted, const Points
   fitted_tree.nearest_all(observed, nearest, unused);
   std::vector<std::vector<int>> owned(static_cast<std::size_t>(fitted.rows()));
   for (Eigen::Index n = 0; n < observed.rows(); ++n) owned[nearest[n]].push_back(static_cast<int>(n));
-  std::vector<double> spreads;
+  std::vector<double> spreads, offsets;
   for (Eigen::Index m = 0; m < fitted.rows(); ++m) {
     if (owned[m].empty()) continue;
     const Eigen::RowVector3d normal = normals.row(m);
-    std::vector<double> offsets;
+    offsets.clear();
     for (const auto& [k, d2] : fitted_tree.nearest_k(fitted.row(m).transpose(), kPatchPoints))
       for (int n : owned[k]) offsets.push_back((observed.row(n) - fitted.row(k)).dot(normal));
     if (offsets.size() < kPatchObserved) continue;
@@ -153,7 +151,7 @@ RefinementField refine_fit(const Points& fitted, const Points& observed,
   check(fitted, "fitted");
   check(observed, "observed");
   const KdTree observed_tree(observed);
-  const Points normals = detail::outward_normals(fitted, kNormalRadius);
+  const Points normals = detail::canonical_normals(fitted);
   const std::vector<int> seen = observed_rows(fitted, normals, observed_tree, viewpoint, settings.gate);
   RefinementField field;
   field.points = static_cast<int>(fitted.rows());

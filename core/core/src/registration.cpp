@@ -77,9 +77,6 @@ detail::Observation prepare_observation(const CategoryModel& model, const Points
   return observation;
 }
 
-// Outward normals of the canonical points; 0.05 (normalised) is a few canonical spacings.
-Points canonical_normals(const Points& points) { return detail::outward_normals(points, 0.05); }
-
 Eigen::Matrix4d to_data_frame(const Pose& pose, const CategoryModel& model, const Eigen::Vector3d& centroid) {
   const double S = model.normalization.scale;
   const Eigen::Matrix3d sR = pose.scale * pose.rotation.toRotationMatrix();
@@ -197,7 +194,7 @@ RegistrationResult register_observation(const CategoryModel& model, const Points
     throw UsageError("model '" + model.category + "' has no parts: use the holistic variant");
   Eigen::Vector3d centroid;
   const Observation observation = prepare_observation(model, observed, settings, centroid);
-  const Points normals = settings.viewpoint ? canonical_normals(model.canonical) : Points();
+  const Points normals = settings.viewpoint ? detail::canonical_normals(model.canonical) : Points();
   const ShapeSpace& holistic = model.holistic();
   // Every space starts with the whole object's centroid on the observation's: a part keeps its place.
   const Eigen::Vector3d centre =
