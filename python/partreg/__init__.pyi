@@ -142,6 +142,7 @@ class Refinement:
     observed: int
     matched: int
     noise: float
+    outlier_weight: float
     width: float
     iterations: int
     seconds: float

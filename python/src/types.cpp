@@ -205,6 +205,8 @@ void bind_registration_result(py::module_& m) {
                     "observed points the E-step matched (the rest, far from the fit and alone, are strays)")
       .def_readonly("noise", &core::RefinementField::noise,
                     "the observation's noise (spread off the fit from point to point), / the model's diagonal")
+      .def_readonly("outlier_weight", &core::RefinementField::outlier_weight,
+                    "the E-step's outlier weight: refine_outliers, or the share left out as strays if larger")
       .def_readonly("width", &core::RefinementField::width,
                     "the kernel width used: refine_beta, or refine_noise_width x noise when wider, / the "
                     "model's diagonal")

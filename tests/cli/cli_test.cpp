@@ -172,6 +172,10 @@ TEST_F(Cli, RegisterWritesItsOutputsAndRefusesBadInput) {
   EXPECT_GT(noise, 0.0);
   EXPECT_LT(noise, 0.02);
   EXPECT_DOUBLE_EQ(refinement.at("kernel_width_normalised").get<double>(), std::max(0.05, 4.0 * noise));
+  // w is refine-outliers (1e-5) or the share left out as strays: a clean scan has few.
+  const double outlier_weight = refinement.at("outlier_weight").get<double>();
+  EXPECT_GE(outlier_weight, 1e-5);
+  EXPECT_LT(outlier_weight, 0.05);
   EXPECT_GT(refinement.at("mean_movement_normalised").get<double>(), 0.0);
   EXPECT_GE(refinement.at("max_movement_normalised").get<double>(),
             refinement.at("mean_movement_normalised").get<double>());

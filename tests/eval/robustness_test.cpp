@@ -1,6 +1,7 @@
 // A held-out kettle under the paper's largest outlier level (20% uniform in the box twice the object's
 // size): registration samples its farthest points among the points with company and matches a point that
-// stands alone only while the fit passes near it. Without that, farthest-point sampling favoured the outliers
+// stands alone only while the fit passes near it, and the refinement spreads the outliers that remain over a
+// volume, as many as the stray screen found. Without that, farthest-point sampling favoured the outliers
 // and the fit was worse than a rigid template (docs/registration.md, "Strays"). And under the paper's second
 // noise level: the refinement widens its kernel with the noise, where it used to stand down and leave the
 // space fit (docs/registration.md, "noise").
@@ -49,20 +50,27 @@ TEST(RealDataRobustness, TwentyPercentOutliersLeaveAHeldOutKettleNearItsCleanFit
   const auto& [truth, model, diagonal] = held_out_kettle();
   const core::Points outliers =
       eval::perturb(truth, eval::Perturbation::outliers, 0.2, diagonal, /*seed=*/7).points;
-  const auto error = [&](const core::Points& observed, double stray_limit) {
+  const auto registered = [&](const core::Points& observed, double stray_limit) {
     core::RegistrationSettings settings;
     settings.sampling.stray_limit = stray_limit;
-    return error_of(core::register_observation(model, observed, settings));
+    return core::register_observation(model, observed, settings);
   };
-  const double clean = error(truth, core::SamplingSettings{}.stray_limit);
-  const double with_strays_out = error(outliers, core::SamplingSettings{}.stray_limit);
-  const double with_every_point = error(outliers, 0.0);
-  std::cerr << "symmetric RMS / diagonal: clean " << clean << ", 20% outliers " << with_strays_out
-            << ", every point kept " << with_every_point << "\n";
-  // Measured 0.0197 against 0.0311 (0.0107 clean): the strays out take away 55% of what the outliers added.
-  // Issue 15's target (1.2x clean) is not met: the outliers the fit passes near are still matched.
+  const core::RegistrationResult clean = registered(truth, core::SamplingSettings{}.stray_limit);
+  const core::RegistrationResult strays_out = registered(outliers, core::SamplingSettings{}.stray_limit);
+  const double clean_error = error_of(clean), with_strays_out = error_of(strays_out),
+               with_every_point = error_of(registered(outliers, 0.0));
+  std::cerr << "symmetric RMS / diagonal: clean " << clean_error << ", 20% outliers " << with_strays_out
+            << ", every point kept " << with_every_point << "; refinement's outlier weight: clean "
+            << clean.refinement.outlier_weight << ", 20% outliers " << strays_out.refinement.outlier_weight << "\n";
+  // Measured 0.0169 against 0.0256 (0.0107 clean); 0.0197 while the refinement's outlier term was CPD's 1 / N
+  // at a fixed w. Issue 15's target (1.2x clean) is not met: the outliers the fit passes near are matched.
   EXPECT_LT(with_strays_out, 0.75 * with_every_point);
-  EXPECT_LT(with_strays_out, 2.2 * clean);
+  EXPECT_LT(with_strays_out, 1.75 * clean_error);
+  // The refinement's w is the share the stray screen left out, a lower bound of the outliers' (measured 0.0103:
+  // most of them pass within 0.1 of the surface), and the floor on the clean instance, which has no strays.
+  EXPECT_GT(strays_out.refinement.outlier_weight, 0.005);
+  EXPECT_LT(strays_out.refinement.outlier_weight, 0.2);
+  EXPECT_EQ(clean.refinement.outlier_weight, core::RefinementSettings{}.outlier_weight);
 }
 
 TEST(RealDataRobustness, TheRefinementStillHelpsAHeldOutKettleUnderNoise) {

@@ -86,6 +86,7 @@ def test_register_equals_the_command_line(partreg, registered, cli_register, cli
         assert getattr(refinement, count) == expected[count]
     assert refinement.mean_movement == pytest.approx(expected["mean_movement_normalised"], rel=EXACT)
     assert refinement.noise == pytest.approx(expected["noise_normalised"], rel=EXACT)
+    assert refinement.outlier_weight == pytest.approx(expected["outlier_weight"], rel=EXACT)
     assert refinement.width == pytest.approx(expected["kernel_width_normalised"], rel=EXACT)
     assert refinement.width >= partreg.registration_defaults()["refine_beta"], "never finer than refine_beta"
     assert refinement.max_movement == pytest.approx(expected["max_movement_normalised"], rel=EXACT)

@@ -253,9 +253,10 @@ Expectation expectation(const Points& moved, const Points& target, double sigma2
                         const EStepSettings& settings) {
   const Eigen::Index m = moved.rows(), n = target.rows();
   const double w = settings.outlier_weight;
-  // Uniform outlier term of the mixture, expressed in the kernel's scale (Myronenko & Song, Eq. 7).
-  const double c = std::pow(2.0 * kPi * sigma2, 1.5) * w / (1.0 - w) * static_cast<double>(m) /
-                   static_cast<double>(n);
+  // Uniform outlier term of the mixture, expressed in the kernel's scale (Myronenko & Song, Eq. 7), over
+  // the outliers' volume when one is given, else over CPD's N.
+  const double spread = settings.outlier_volume > 0.0 ? settings.outlier_volume : static_cast<double>(n);
+  const double c = std::pow(2.0 * kPi * sigma2, 1.5) * w / (1.0 - w) * static_cast<double>(m) / spread;
   Expectation out;
   out.Pt1.resize(n);
   if (settings.exact) {

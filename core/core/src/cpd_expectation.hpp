@@ -19,6 +19,10 @@ struct Expectation {
 /// How an E-step is computed.
 struct EStepSettings {
   double outlier_weight = 0.1;  ///< w in [0, 1)
+  /// The volume the outliers are spread over: their density is 1 / volume. 0 keeps CPD's 1 / N, which is a
+  /// density per point, not per volume: at a small sigma it makes a point 5 sigma off more likely surface
+  /// than outlier (docs/registration.md, "Strays"). The refinement sets it; CPD's own fits keep 1 / N.
+  double outlier_volume = 0.0;
   int threads = 0;              ///< 0 = all cores
   /// Every source-target pair in double precision: the reference the fast path is tested against.
   bool exact = false;

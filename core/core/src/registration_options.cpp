@@ -139,7 +139,9 @@ std::vector<RegistrationOption> make_options() {
           "refine-gate", "a point farther than this from the observation is unobserved (normalised length)",
           1e-4, 10.0, [](auto& s) -> auto& { return s.refinement.gate; }),
       Make::real(
-          "refine-outliers", "share of the observation the refinement explains as uniform noise", 0.0, 0.99,
+          "refine-outliers",
+          "least share of the observation the refinement explains as uniform noise (the share of strays raises it)",
+          0.0, 0.99,
           [](auto& s) -> auto& { return s.refinement.outlier_weight; }),
       Make::whole(
           "refine-iterations", "refinement EM iterations at most", 1, 1000,

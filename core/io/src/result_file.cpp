@@ -29,6 +29,7 @@ nlohmann::json refinement_json(const core::RefinementField& field, const core::R
           {"points", field.points},
           {"observed", field.observed},
           {"matched", field.matched},
+          {"outlier_weight", field.outlier_weight},
           {"noise_normalised", field.noise},
           {"kernel_width_normalised", field.width},
           {"centres", field.centres.rows()},

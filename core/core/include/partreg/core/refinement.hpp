@@ -30,6 +30,9 @@ struct RefinementField {
   /// wider. 0 when nothing was seen.
   double width = 0.0;
   int matched = 0;  ///< observed points the E-step matched: all but the strays (far from the fit and alone)
+  /// The E-step's outlier weight w: RefinementSettings::outlier_weight, or the share of observed points left
+  /// out as strays when that is larger (at most 0.5). 0 when nothing was seen.
+  double outlier_weight = 0.0;
   int iterations = 0;  ///< EM iterations run
   double seconds = 0.0;
   /// How far the field moved the fitted points: mean and largest |v(p)| over them, in normalised length (the

@@ -128,7 +128,9 @@ struct RefinementSettings {
   /// a point the space fit left 5-10% off a surface the sensor saw is the worst error there, and the
   /// refinement is there to reach it (docs/registration.md).
   double gate = 0.1;
-  double outlier_weight = 0.1;  ///< CPD's w in [0, 1): share of the observation explained by uniform noise
+  /// CPD's w in [0, 1): the least share of the observation explained by uniform noise; the share the stray
+  /// screen left out raises it (RefinementField::outlier_weight).
+  double outlier_weight = 1e-5;
   int iterations = 20;          ///< EM iterations at most
   /// The kernel is at least this many times the observation's noise wide (RefinementField::noise; 0 = always
   /// beta): detail finer than the noise cannot be told from it. Measured: docs/registration.md.
