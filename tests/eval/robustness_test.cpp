@@ -1,6 +1,6 @@
 // A held-out kettle under the paper's largest outlier level (20% uniform in the box twice the object's
 // size): registration samples its farthest points among the points with company and matches a point that
-// stands alone only while the fit passes near it, and the refinement spreads the outliers that remain over a
+// stands alone only while the fit passes near it (in the pose search's screening too), and the refinement spreads the outliers that remain over a
 // volume, as many as the stray screen found. Without that, farthest-point sampling favoured the outliers
 // and the fit was worse than a rigid template (docs/registration.md, "Strays"). And under the paper's second
 // noise level: the refinement widens its kernel with the noise, where it used to stand down and leave the
@@ -62,11 +62,12 @@ TEST(RealDataRobustness, TwentyPercentOutliersLeaveAHeldOutKettleNearItsCleanFit
   std::cerr << "symmetric RMS / diagonal: clean " << clean_error << ", 20% outliers " << with_strays_out
             << ", every point kept " << with_every_point << "; refinement's outlier weight: clean "
             << clean.refinement.outlier_weight << ", 20% outliers " << strays_out.refinement.outlier_weight << "\n";
-  // Measured 0.0169 against 0.0256 (0.0107 clean); 0.0197 while the refinement's outlier term was CPD's 1 / N
-  // at a fixed w. Issue 15's target (1.2x clean) is not met: the outliers the fit passes near are matched.
+  // Measured 0.0154 against 0.0256 (0.0107 clean); 0.0169 while the pose search's screening dropped the
+  // flags, 0.0197 while the refinement's outlier term was also CPD's 1 / N at a fixed w. Issue 15's target
+  // (1.2x clean) is not met: the outliers the fit passes near are matched.
   EXPECT_LT(with_strays_out, 0.75 * with_every_point);
-  EXPECT_LT(with_strays_out, 1.75 * clean_error);
-  // The refinement's w is the share the stray screen left out, a lower bound of the outliers' (measured 0.0103:
+  EXPECT_LT(with_strays_out, 1.6 * clean_error);
+  // The refinement's w is the share the stray screen left out, a lower bound of the outliers' (measured 0.0113:
   // most of them pass within 0.1 of the surface), and the floor on the clean instance, which has no strays.
   EXPECT_GT(strays_out.refinement.outlier_weight, 0.005);
   EXPECT_LT(strays_out.refinement.outlier_weight, 0.2);

@@ -137,9 +137,15 @@ std::optional<CoarseProblem> coarse_problem(const ShapeSpace& space, const Point
   const std::vector<int> canonical_rows = rows_of(space.canonical);
   coarse.space = restricted_space(space, canonical_rows);
   if (normals.rows() > 0) coarse.normals = select_rows(normals, canonical_rows);
-  coarse.observation.points = select_rows(observation.points, rows_of(observation.points));
+  const std::vector<int> observed_rows = rows_of(observation.points);
+  coarse.observation.points = select_rows(observation.points, observed_rows);
   coarse.observation.tree = std::make_unique<KdTree>(coarse.observation.points);
   coarse.observation.viewpoint = observation.viewpoint;
+  // The lone points keep their flags: farthest points take them first, so at the paper's 20% outliers about
+  // half the subset were outliers, and matched like the rest they decided the ranking of the starts
+  // (docs/registration.md, "Strays").
+  if (!observation.alone.empty())
+    for (int n : observed_rows) coarse.observation.alone.push_back(observation.alone[static_cast<std::size_t>(n)]);
   return coarse;
 }
 
