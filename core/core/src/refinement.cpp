@@ -207,14 +207,14 @@ RefinementField refine_fit(const Points& fitted, const Points& observed,
   detail::EmControl control;
   // The observation tells how many outliers it carries: the share the stray screen left out. Those that
   // passed it (with company, or within kStrayDistance) come from the same spread, so w is at least that share
-  // (a fixed w must choose between real scans, best near 0, and the paper's outliers, best near 0.03:
+  // (a fixed w must choose between real scans, best near 0, and the paper's outliers, alike from 0.01 to 0.2:
   // docs/registration.md).
   const double stray_share = 1.0 - static_cast<double>(near.size()) / static_cast<double>(observed.rows());
   field.outlier_weight = std::max(settings.outlier_weight, std::min(stray_share, kMaximumOutlierWeight));
   control.e_step.outlier_weight = field.outlier_weight;
   // Outliers spread over the matched points' box (docs/registration.md, "Strays"): with CPD's 1 / N a point
   // 4 or 5 sigma off still counted as surface, and the paper's box outliers that pass the stray screen
-  // pulled the fit (kettles' full views at 20% outliers 1.79% with it, 1.50% over the box).
+  // pulled the fit (kettles' full views at 20% outliers 1.79% with it, 1.54% over the box).
   control.e_step.outlier_volume = bounding_box_volume(matched);
   control.tolerance = 1e-5;
   control.max_iterations = settings.iterations;
