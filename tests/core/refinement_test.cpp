@@ -198,9 +198,17 @@ TEST(Refinement, WidensItsKernelWithTheObservationsNoise) {
   Points observed = setup().truth;
   for (Eigen::Index i = 0; i < observed.rows(); ++i)
     for (int c = 0; c < 3; ++c) observed(i, c) += noise(random);
-  const RegistrationResult space = register_observation(setup().model, observed, refined(false));
-  const RegistrationResult fine = register_observation(setup().model, observed, refined(true));
-  RegistrationSettings fixed = refined(true);
+  // The refinement is judged against the closest-point space fit it was measured on: at this noise the
+  // space fit would otherwise end in the Gaussian mixture (mixture_fit.hpp), which on this bumped mug is
+  // worse (3.03% against 2.64%, docs/registration.md "Noise").
+  const auto closest = [](bool on) {
+    RegistrationSettings settings = refined(on);
+    settings.objective.mixture_noise = 1e6;
+    return settings;
+  };
+  const RegistrationResult space = register_observation(setup().model, observed, closest(false));
+  const RegistrationResult fine = register_observation(setup().model, observed, closest(true));
+  RegistrationSettings fixed = closest(true);
   fixed.refinement.noise_width = 0.0;  // the kernel stays at beta
   const RegistrationResult chased = register_observation(setup().model, observed, fixed);
   std::cout << "noisy cloud: noise " << fine.refinement.noise << " (sigma " << sigma << "), width "

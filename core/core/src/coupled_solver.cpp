@@ -8,6 +8,7 @@
 #include <cmath>
 #include <memory>
 
+#include "mixture_fit.hpp"
 #include "moment_cost.hpp"
 #include "partreg/core/gaussian_kernel.hpp"
 #include "partreg/core/kdtree.hpp"
@@ -385,7 +386,8 @@ std::unique_ptr<ceres::CostFunction> make_seam_cost(const ShapeSpace& a, const E
 
 std::vector<SearchOutcome> solve_coupled(const CategoryModel& model, const Points& normals,
                                          const Observation& observation, const SpaceSolution& holistic,
-                                         const RegistrationSettings& settings) {
+                                         const RegistrationSettings& settings, const Points* mixture_targets,
+                                         const std::vector<bool>& centres) {
   const auto start = std::chrono::steady_clock::now();
   const std::vector<Part> parts = describe_parts(model, normals);
   const std::vector<Seam> seams = find_seams(parts, settings.objective.seam_radius);
@@ -427,6 +429,27 @@ std::vector<SearchOutcome> solve_coupled(const CategoryModel& model, const Point
       break;
     }
     previous = cost;
+  }
+  if (mixture_targets && had_pairs && centres.size() == static_cast<std::size_t>(model.canonical.rows())) {
+    // The same joint problem with the mixture's pairs in place of the closest points (mixture_fit.hpp).
+    Mixture mixture(*mixture_targets);
+    for (int step = 0; step < settings.convergence.outer_iterations; ++step) {
+      std::vector<bool> visible;
+      const Points posed = assemble(model, parts, unknowns, observation, visible);
+      for (std::size_t m = 0; m < visible.size(); ++m) visible[m] = visible[m] && centres[m];
+      const std::vector<WeightedPair> pairs = mixture.pairs(posed, visible);
+      if (pairs.empty()) break;
+      cost = solve_step(parts, seams, pairs_by_part(model, pairs), unknowns, settings);
+      const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+      for (std::size_t p = 0; p < parts.size(); ++p) {
+        SpaceSolution& solution = outcomes[p].best;
+        solution.steps.emplace_back(unknowns.latent[p], unknowns.part_pose(parts[p], p));
+        solution.step_costs.push_back(cost);
+        solution.step_seconds.push_back(seconds);
+      }
+      if (mixture.update(assemble(model, parts, unknowns, observation, visible), settings.convergence.tolerance))
+        break;
+    }
   }
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   for (std::size_t p = 0; p < parts.size(); ++p) {

@@ -1,6 +1,6 @@
 #pragma once
 // Normals of a point set without a surface (internal to partreg_core): the registration's visibility test
-// and the refinement's both use them.
+// and the refinement's both use them, and so does the noise read along them.
 
 #include <utility>
 #include <vector>
@@ -16,5 +16,11 @@ Points outward_normals(const Points& points, double radius);
 /// outward_normals of canonical points in the normalised frame (the model's diagonal is 1, about 1000
 /// points): a radius of 0.05 spans a few canonical spacings.
 Points canonical_normals(const Points& points);
+
+/// The observation's noise (normalised length) against a fit of it: the median spread, along the fit's
+/// `normals`, of the observed points around each small patch of fitted points (definition: point_normals.cpp).
+/// The refinement widens its kernel with it; the registration finishes its space fits in a Gaussian mixture
+/// above RegistrationSettings' mixture_noise.
+double observed_noise(const Points& observed, const Points& fitted, const Points& normals);
 
 }  // namespace partreg::core::detail

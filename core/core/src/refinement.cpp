@@ -79,42 +79,6 @@ std::vector<int> observed_rows(const Points& fitted, const Points& normals, cons
   return rows;
 }
 
-// The observation's noise (normalised length), measured against the space fit so that neither curvature,
-// thin walls nor a sparse scan reads as noise: every observed point is grouped with its nearest fitted point,
-// a patch is a fitted point and its kPatchPoints - 1 nearest fitted neighbours, and the spread within a patch
-// is the standard deviation of its observed points' offsets (each from its own nearest fitted point, along
-// the patch's normal). The median over patches is the figure. A smooth misfit moves a whole patch alike and
-// adds little; noise differs from point to point. Measured on the paper's noise sweep (kettles, full views):
-// 0.003-0.009 clean, 0.035 at sigma 0.033, 0.065 at sigma 0.083 (points pushed far go to the next patch).
-// A plane fitted to each point's 16 nearest observed neighbours, as before 2026-12-03, saturated near 0.028
-// and read a clean mug's two walls (0.018) as noisier than a noisy kettle.
-constexpr int kPatchPoints = 7;
-constexpr std::size_t kPatchObserved = 6;  // fewer observed points in a patch give no spread worth a vote
-
-double observed_noise(const Points& observed, const Points& fitted, const Points& normals) {
-  std::vector<int> nearest;
-  Eigen::VectorXd unused;
-  const KdTree fitted_tree(fitted);
-  fitted_tree.nearest_all(observed, nearest, unused);
-  std::vector<std::vector<int>> owned(static_cast<std::size_t>(fitted.rows()));
-  for (Eigen::Index n = 0; n < observed.rows(); ++n) owned[nearest[n]].push_back(static_cast<int>(n));
-  std::vector<double> spreads, offsets;
-  for (Eigen::Index m = 0; m < fitted.rows(); ++m) {
-    if (owned[m].empty()) continue;
-    const Eigen::RowVector3d normal = normals.row(m);
-    offsets.clear();
-    for (const auto& [k, d2] : fitted_tree.nearest_k(fitted.row(m).transpose(), kPatchPoints))
-      for (int n : owned[k]) offsets.push_back((observed.row(n) - fitted.row(k)).dot(normal));
-    if (offsets.size() < kPatchObserved) continue;
-    const Eigen::Map<const Eigen::VectorXd> values(offsets.data(), static_cast<Eigen::Index>(offsets.size()));
-    spreads.push_back(std::sqrt((values.array() - values.mean()).square().sum() / (values.size() - 1.0)));
-  }
-  if (spreads.empty()) return 0.0;
-  const auto middle = spreads.begin() + static_cast<long>(spreads.size() / 2);
-  std::nth_element(spreads.begin(), middle, spreads.end());
-  return *middle;
-}
-
 using SparseKernel = Eigen::SparseMatrix<double, Eigen::RowMajor>;
 
 // G(points, centres) without the values below kTruncation.
@@ -191,7 +155,7 @@ RefinementField refine_fit(const Points& fitted, const Points& observed,
   // point counts, the far ones too: at the paper's largest noise the points pushed beyond the
   // stray distance are the noise's tail (measured with only the matched ones: drills' full views 4.13 against
   // 3.70 at the largest level).
-  field.noise = observed_noise(observed, fitted, normals);
+  field.noise = detail::observed_noise(observed, fitted, normals);
   field.width = std::max(settings.beta, settings.noise_width * field.noise);
   const double beta = field.width;
 

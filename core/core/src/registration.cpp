@@ -12,6 +12,7 @@
 #include "partreg/core/registration_options.hpp"
 #include "partreg/core/sampling.hpp"
 #include "coupled_solver.hpp"
+#include "mixture_fit.hpp"
 #include "point_normals.hpp"
 #include "pose_search.hpp"
 #include "space_solver.hpp"
@@ -112,6 +113,7 @@ void record(RegistrationResult& result, const std::string& name, const detail::S
 
 Points rows_of(const Points& points, const std::vector<int>& rows) { return select_rows(points, rows); }
 
+
 // Splits the observation by part: each observed point goes to the part of the nearest point of the
 // holistic fit (indexed by space; a part with fewer than 10 points gets no observation of its own).
 std::vector<Observation> split_observation(const CategoryModel& model, const Observation& observation,
@@ -151,6 +153,16 @@ std::vector<int> rows_near(const Observation& observation, const Points& fitted)
 Points without_strays(const Observation& observation, const Points& fitted) {
   return observation.alone.empty() ? observation.points
                                    : select_rows(observation.points, rows_near(observation, fitted));
+}
+
+// The observed points a mixture finishes the space fits on (mixture_fit.hpp), or none when the observation
+// reads no noisier than the setting against the holistic fit `fitted`.
+std::optional<Points> mixture_targets(const Observation& observation, const Points& fitted,
+                                      const RegistrationSettings& settings) {
+  Points targets = without_strays(observation, fitted);
+  if (detail::observed_noise(targets, fitted, detail::canonical_normals(fitted)) <= settings.objective.mixture_noise)
+    return std::nullopt;
+  return targets;
 }
 
 // Observed points the final fit left out (FitStatistics::strays).
@@ -207,13 +219,21 @@ RegistrationResult register_observation(const CategoryModel& model, const Points
   result.variant = settings.variant;
   Points deformed_normalised(model.canonical.rows(), 3);
   SpaceSolution whole;
+  std::optional<Points> mixture;  // the observed points the space fits end on, when the observation is noisy
+  std::vector<bool> centres;      // the canonical rows that centre it (computed only when it is used)
   if (settings.variant != Variant::partwise) {
-    const detail::SearchOutcome search = detail::search_poses(
+    detail::SearchOutcome search = detail::search_poses(
         holistic, normals, observation, poses, Eigen::VectorXd::Zero(holistic.dimensions()), settings);
+    deformed_normalised = search.best.pose.apply(holistic.deformed(search.best.latent));
+    mixture = mixture_targets(observation, deformed_normalised, settings);
+    if (mixture) {
+      centres = detail::mixture_centres(model.canonical);
+      detail::finish_in_mixture(holistic, normals, observation, *mixture, centres, settings, search.best);
+      deformed_normalised = search.best.pose.apply(holistic.deformed(search.best.latent));
+    }
     record(result, holistic.name, search, model, centroid);
     fitted.step("fitted " + holistic.name);
     whole = search.best;
-    deformed_normalised = whole.pose.apply(holistic.deformed(whole.latent));
   }
   if (settings.variant != Variant::holistic) {
     const Points holistic_displacement = settings.variant == Variant::hol_part
@@ -236,7 +256,8 @@ RegistrationResult register_observation(const CategoryModel& model, const Points
     // Parts are independent given their initialisation: solve them in parallel, within the thread budget.
     std::vector<detail::SearchOutcome> parts(model.spaces.size() - 1);
     if (settings.variant == Variant::coupled)
-      parts = detail::solve_coupled(model, normals, observation, whole, settings);
+      parts = detail::solve_coupled(model, normals, observation, whole, settings,
+                                    mixture ? &*mixture : nullptr, centres);
     else
       parallel_for(
         static_cast<Eigen::Index>(parts.size()),

@@ -75,6 +75,11 @@ std::vector<RegistrationOption> make_options() {
           "seam-radius",
           "coupled: canonical points this close to another part's are seam points (normalised length)", 0.0,
           1.0, [](auto& s) -> auto& { return s.objective.seam_radius; }),
+      Make::real(
+          "mixture-noise",
+          "an observation noisier than this (normalised length) ends each space fit with EM over a Gaussian "
+          "mixture instead of closest points (0: always)",
+          0.0, 1e6, [](auto& s) -> auto& { return s.objective.mixture_noise; }),
       Make::flag(
           "scale", "also fit a uniform scale", [](auto& s) -> auto& { return s.objective.estimate_scale; }),
       viewpoint(),
