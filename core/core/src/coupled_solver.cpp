@@ -403,6 +403,16 @@ std::vector<SearchOutcome> solve_coupled(const CategoryModel& model, const Point
   int iterations = 0;
   double cost = 0.0;
   CorrespondenceHints hints;
+  // Each step's latents and poses, per part, for the registration's history.
+  const auto record_step = [&] {
+    const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    for (std::size_t p = 0; p < parts.size(); ++p) {
+      SpaceSolution& solution = outcomes[p].best;
+      solution.steps.emplace_back(unknowns.latent[p], unknowns.part_pose(parts[p], p));
+      solution.step_costs.push_back(cost);
+      solution.step_seconds.push_back(seconds);
+    }
+  };
   for (int outer = 0; outer < settings.convergence.outer_iterations; ++outer) {
     std::vector<bool> visible;
     const Points posed = assemble(model, parts, unknowns, observation, visible);
@@ -415,13 +425,7 @@ std::vector<SearchOutcome> solve_coupled(const CategoryModel& model, const Point
     cost =
         solve_step(parts, seams, pairs_by_part(model, weighted_pairs(pairs, settings)), unknowns, settings);
     iterations = outer + 1;
-    const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    for (std::size_t p = 0; p < parts.size(); ++p) {
-      SpaceSolution& solution = outcomes[p].best;
-      solution.steps.emplace_back(unknowns.latent[p], unknowns.part_pose(parts[p], p));
-      solution.step_costs.push_back(cost);
-      solution.step_seconds.push_back(seconds);
-    }
+    record_step();
     // Settled as a single space's fit is: the cost or the unknowns stop moving.
     if (std::abs(previous - cost) <= settings.convergence.tolerance * std::max(cost, 1e-12) ||
         unknowns.distance_to(before) < settings.convergence.tolerance) {
@@ -440,13 +444,8 @@ std::vector<SearchOutcome> solve_coupled(const CategoryModel& model, const Point
       const std::vector<WeightedPair> pairs = mixture.pairs(posed, visible);
       if (pairs.empty()) break;
       cost = solve_step(parts, seams, pairs_by_part(model, pairs), unknowns, settings);
-      const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-      for (std::size_t p = 0; p < parts.size(); ++p) {
-        SpaceSolution& solution = outcomes[p].best;
-        solution.steps.emplace_back(unknowns.latent[p], unknowns.part_pose(parts[p], p));
-        solution.step_costs.push_back(cost);
-        solution.step_seconds.push_back(seconds);
-      }
+      ++iterations;
+      record_step();
       if (mixture.update(assemble(model, parts, unknowns, observation, visible), settings.convergence.tolerance))
         break;
     }
