@@ -434,13 +434,12 @@ std::vector<SearchOutcome> solve_coupled(const CategoryModel& model, const Point
     }
     previous = cost;
   }
-  if (mixture_targets && had_pairs && centres.size() == static_cast<std::size_t>(model.canonical.rows())) {
+  if (mixture_targets && had_pairs) {
     // The same joint problem with the mixture's pairs in place of the closest points (mixture_fit.hpp).
-    Mixture mixture(*mixture_targets);
+    Mixture mixture(*mixture_targets, centres);
     for (int step = 0; step < settings.convergence.outer_iterations; ++step) {
       std::vector<bool> visible;
       const Points posed = assemble(model, parts, unknowns, observation, visible);
-      for (std::size_t m = 0; m < visible.size(); ++m) visible[m] = visible[m] && centres[m];
       const std::vector<WeightedPair> pairs = mixture.pairs(posed, visible);
       if (pairs.empty()) break;
       cost = solve_step(parts, seams, pairs_by_part(model, pairs), unknowns, settings);

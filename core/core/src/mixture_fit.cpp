@@ -39,12 +39,13 @@ std::vector<bool> mixture_centres(const Points& canonical) {
   return centres;
 }
 
-Mixture::Mixture(Points targets) : targets_(std::move(targets)) {}
+Mixture::Mixture(Points targets, std::vector<bool> centres)
+    : targets_(std::move(targets)), centres_(std::move(centres)) {}
 
-std::vector<WeightedPair> Mixture::pairs(const Points& posed, const std::vector<bool>& active) {
+std::vector<WeightedPair> Mixture::pairs(const Points& posed, const std::vector<bool>& visible) {
   rows_.clear();
-  for (std::size_t m = 0; m < active.size(); ++m)
-    if (active[m]) rows_.push_back(static_cast<int>(m));
+  for (std::size_t m = 0; m < visible.size() && m < centres_.size(); ++m)
+    if (visible[m] && centres_[m]) rows_.push_back(static_cast<int>(m));
   if (rows_.empty() || targets_.rows() == 0) return {};
   const Points centres = active_rows(posed, rows_);
   if (sigma2_ <= 0.0) sigma2_ = residual_sigma2(centres, targets_);
@@ -81,12 +82,11 @@ void finish_in_mixture(const ShapeSpace& space, const Points& normals, const Obs
   const auto elapsed = [&] {
     return before + std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   };
-  Mixture mixture(targets);
+  Mixture mixture(targets, centres);
   for (int step = 0; step < settings.convergence.outer_iterations; ++step) {
     const Points posed = solution.pose.apply(space.deformed(solution.latent));
-    std::vector<bool> active = visible_rows(posed, normals, solution.pose, observation.viewpoint);
-    for (std::size_t m = 0; m < active.size(); ++m) active[m] = active[m] && centres[m];
-    std::vector<WeightedPair> pairs = mixture.pairs(posed, active);
+    std::vector<WeightedPair> pairs =
+        mixture.pairs(posed, visible_rows(posed, normals, solution.pose, observation.viewpoint));
     if (pairs.empty()) return;
     ceres::Problem problem;
     double* rotation = solution.pose.rotation.coeffs().data();

@@ -29,22 +29,22 @@ std::vector<bool> mixture_centres(const Points& canonical);
 /// One registration's mixture: the observed points it explains and the variance, carried from step to step.
 class Mixture {
  public:
-  /// `targets`: the observed points to explain (the observation without the closest-point fit's strays).
-  explicit Mixture(Points targets);
+  /// `targets`: the observed points to explain (the observation without the closest-point fit's strays);
+  /// `centres`: the rows that may centre it (mixture_centres, over the rows the posed points will have).
+  Mixture(Points targets, std::vector<bool> centres);
 
-  /// The E-step for `posed` points (every row of the object or of one space) of which the `active` rows are
-  /// centres: each active row with posterior mass becomes a pair onto its posterior mean, weighted by its share
-  /// of the mass. The first call starts the variance at the closest-point residual.
-  std::vector<WeightedPair> pairs(const Points& posed, const std::vector<bool>& active);
+  /// The E-step for `posed` points (every row of the object or of one space) with the `visible` centres: each
+  /// with posterior mass becomes a pair onto its posterior mean, weighted by its share of the mass. The first
+  /// call starts the variance at the closest-point residual.
+  std::vector<WeightedPair> pairs(const Points& posed, const std::vector<bool>& visible);
 
   /// The variance after the M-step moved the same rows to `posed`; true once it has settled (relative change
   /// below `tolerance`).
   bool update(const Points& posed, double tolerance);
 
-  double sigma2() const { return sigma2_; }
-
  private:
   Points targets_;
+  std::vector<bool> centres_;
   std::vector<int> rows_;  ///< the last E-step's active rows
   Expectation expectation_;
   double sigma2_ = 0.0;
