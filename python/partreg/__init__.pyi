@@ -151,11 +151,18 @@ class Refinement:
     @property
     def applied(self) -> bool: ...
 
+class MixtureFinish:
+    """Whether the space fits ended in a Gaussian mixture (noise above mixture_noise); shares of the diagonal."""
+    applied: bool
+    noise: float
+    sigma: float
+
 class RegistrationResult:
     fits: list[SpaceFit]
     history: list[HistoryStep]
     fit: FitStatistics
     refinement: Refinement
+    mixture: MixtureFinish
     seconds: float
     @property
     def variant(self) -> str: ...

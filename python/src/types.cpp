@@ -216,6 +216,14 @@ void bind_registration_result(py::module_& m) {
                     "mean distance it moved the fitted points, / the model's diagonal")
       .def_readonly("max_movement", &core::RefinementField::max_movement,
                     "largest distance it moved a fitted point, / the model's diagonal");
+  py::class_<core::MixtureFinish>(m, "MixtureFinish",
+                                  "Whether the space fits ended in a Gaussian mixture (above mixture_noise).")
+      .def_readonly("applied", &core::MixtureFinish::applied,
+                    "the holistic fit, and coupled's joint problem after it, continued in the mixture")
+      .def_readonly("noise", &core::MixtureFinish::noise,
+                    "the noise read off the holistic space fit, / the model's diagonal (0: not read, as for partwise)")
+      .def_readonly("sigma", &core::MixtureFinish::sigma,
+                    "the mixture's final standard deviation per axis, / the model's diagonal (0: not applied)");
   py::class_<core::RegistrationResult, std::shared_ptr<core::RegistrationResult>> result(
       m, "RegistrationResult", "What register() found.");
   result.def_property_readonly("variant", [](const core::RegistrationResult& s) { return core::enum_name(s.variant); })
@@ -223,6 +231,8 @@ void bind_registration_result(py::module_& m) {
       .def_readonly("history", &core::RegistrationResult::history, "every outer step of every space, in order")
       .def_readonly("fit", &core::RegistrationResult::fit)
       .def_readonly("refinement", &core::RegistrationResult::refinement, "what the refinement did")
+      .def_readonly("mixture", &core::RegistrationResult::mixture,
+                    "whether the space fits ended in a Gaussian mixture, and on what noise")
       .def_readonly("seconds", &core::RegistrationResult::seconds)
       .def("space_fit", [](const core::RegistrationResult& s, const std::string& name) {
              for (const core::SpaceFit& fit : s.fits)

@@ -176,6 +176,12 @@ TEST_F(Cli, RegisterWritesItsOutputsAndRefusesBadInput) {
   const double outlier_weight = refinement.at("outlier_weight").get<double>();
   EXPECT_GE(outlier_weight, 1e-5);
   EXPECT_LT(outlier_weight, 0.05);
+  // A clean scan stays with closest points: the mixture (above mixture-noise, 0.03) did not run.
+  const nlohmann::json& mixture = report.at("mixture");
+  EXPECT_FALSE(mixture.at("applied").get<bool>());
+  EXPECT_GT(mixture.at("noise_normalised").get<double>(), 0.0);
+  EXPECT_LT(mixture.at("noise_normalised").get<double>(), 0.03);
+  EXPECT_EQ(mixture.at("sigma_normalised").get<double>(), 0.0);
   EXPECT_GT(refinement.at("mean_movement_normalised").get<double>(), 0.0);
   EXPECT_GE(refinement.at("max_movement_normalised").get<double>(),
             refinement.at("mean_movement_normalised").get<double>());

@@ -252,19 +252,34 @@ TEST(Registration, ANoisyCloudIsFittedInAGaussianMixture) {
     mixture.refinement.enabled = false;
     RegistrationSettings closest = mixture;
     closest.objective.mixture_noise = 1e6;  // never
-    const double with = error(register_observation(setup().model, observed, mixture));
-    const double without = error(register_observation(setup().model, observed, closest));
+    const RegistrationResult in_mixture = register_observation(setup().model, observed, mixture);
+    const RegistrationResult by_closest = register_observation(setup().model, observed, closest);
+    const double with = error(in_mixture), without = error(by_closest);
     std::cout << enum_name(variant) << ": symmetric RMS closest points " << without << ", mixture " << with
+              << "; noise read " << in_mixture.mixture.noise << ", mixture sigma " << in_mixture.mixture.sigma
               << "\n";
     EXPECT_LT(with, 0.92 * without) << enum_name(variant);
+    // The result says what ran, and on what: the noise read is the same fit's either way, and the mixture's
+    // final sigma is the noise's own scale (0.08 per axis), not a fraction or a multiple of it.
+    EXPECT_TRUE(in_mixture.mixture.applied);
+    EXPECT_FALSE(by_closest.mixture.applied);
+    EXPECT_EQ(in_mixture.mixture.noise, by_closest.mixture.noise);
+    EXPECT_GT(in_mixture.mixture.noise, mixture.objective.mixture_noise);
+    EXPECT_GT(in_mixture.mixture.sigma, 0.8 * 0.08);
+    EXPECT_LT(in_mixture.mixture.sigma, 1.25 * 0.08);
+    EXPECT_EQ(by_closest.mixture.sigma, 0.0);
   }
   // A clean view reads far below the limit: its fit is the closest-point fit, unchanged.
   RegistrationSettings always;
   always.refinement.enabled = false;
   RegistrationSettings never = always;
   never.objective.mixture_noise = 1e6;
-  EXPECT_TRUE(register_observation(setup().model, truth, always).deformed.isApprox(
-      register_observation(setup().model, truth, never).deformed, 0.0));
+  const RegistrationResult clean = register_observation(setup().model, truth, always);
+  EXPECT_TRUE(clean.deformed.isApprox(register_observation(setup().model, truth, never).deformed, 0.0));
+  EXPECT_FALSE(clean.mixture.applied);
+  EXPECT_GT(clean.mixture.noise, 0.0);
+  EXPECT_LT(clean.mixture.noise, always.objective.mixture_noise);
+  EXPECT_EQ(clean.mixture.sigma, 0.0);
 }
 
 TEST(Registration, RefusesBadObservations) {

@@ -90,6 +90,12 @@ def test_register_equals_the_command_line(partreg, registered, cli_register, cli
     assert refinement.width == pytest.approx(expected["kernel_width_normalised"], rel=EXACT)
     assert refinement.width >= partreg.registration_defaults()["refine_beta"], "never finer than refine_beta"
     assert refinement.max_movement == pytest.approx(expected["max_movement_normalised"], rel=EXACT)
+    # Whether the space fits ended in a Gaussian mixture: not on a clean scan, the same read either way.
+    mixture, expected = registered.mixture, cli_register["mixture"]
+    assert not mixture.applied and not expected["applied"]
+    assert mixture.noise == pytest.approx(expected["noise_normalised"], rel=EXACT)
+    assert 0 < mixture.noise < partreg.registration_defaults()["mixture_noise"]
+    assert mixture.sigma == expected["sigma_normalised"] == 0
     # A point moves towards observed points within the refinement's gate (0.1 of the diagonal): by about a
     # gate at most (0.105 on this mug in one run, under 0.1 in another: the parallel sums' order varies),
     # never flung.

@@ -148,6 +148,9 @@ void run_register(const RegisterOptions& options) {
   if (result.fit.strays > 0)
     std::cerr << "  " << result.fit.strays
               << " observed points stood alone, far from the fit, and were left out (stray-limit)\n";
+  if (result.mixture.applied)
+    std::cerr << "  noise " << result.mixture.noise << " of the model's diagonal (above mixture-noise): the space "
+              << "fit ended in a Gaussian mixture, sigma " << result.mixture.sigma << "\n";
   nlohmann::json report =
       io::result_json(result, options.settings, {options.model_path, options.observed_path});
   if (result.variant != core::Variant::holistic) {

@@ -74,7 +74,7 @@ bool Mixture::update(const Points& posed, double tolerance) {
   return settled;
 }
 
-void finish_in_mixture(const ShapeSpace& space, const Points& normals, const Observation& observation,
+double finish_in_mixture(const ShapeSpace& space, const Points& normals, const Observation& observation,
                        const Points& targets, const std::vector<bool>& centres,
                        const RegistrationSettings& settings, SpaceSolution& solution) {
   const auto start = std::chrono::steady_clock::now();
@@ -87,7 +87,7 @@ void finish_in_mixture(const ShapeSpace& space, const Points& normals, const Obs
     const Points posed = solution.pose.apply(space.deformed(solution.latent));
     std::vector<WeightedPair> pairs =
         mixture.pairs(posed, visible_rows(posed, normals, solution.pose, observation.viewpoint));
-    if (pairs.empty()) return;
+    if (pairs.empty()) break;
     ceres::Problem problem;
     double* rotation = solution.pose.rotation.coeffs().data();
     double* scale = &solution.pose.scale;
@@ -100,8 +100,9 @@ void finish_in_mixture(const ShapeSpace& space, const Points& normals, const Obs
     solution.step_seconds.push_back(elapsed());
     solution.seconds = elapsed();
     ++solution.iterations;
-    if (mixture.update(solution.pose.apply(space.deformed(solution.latent)), settings.convergence.tolerance)) return;
+    if (mixture.update(solution.pose.apply(space.deformed(solution.latent)), settings.convergence.tolerance)) break;
   }
+  return mixture.sigma();
 }
 
 }  // namespace partreg::core::detail

@@ -9,6 +9,7 @@
 // step's cost is a weighted least squares onto each canonical point's posterior mean, the same weighted pairs
 // the closest-point steps hand to MomentCost.
 
+#include <cmath>
 #include <vector>
 
 #include "cpd_expectation.hpp"
@@ -42,6 +43,9 @@ class Mixture {
   /// below `tolerance`).
   bool update(const Points& posed, double tolerance);
 
+  /// The standard deviation per axis after the last update (0 before the first E-step).
+  double sigma() const { return std::sqrt(sigma2_); }
+
  private:
   Points targets_;
   std::vector<bool> centres_;
@@ -51,8 +55,9 @@ class Mixture {
 };
 
 /// Continues a single space's fit in the mixture of `targets` from `solution` (its closest-point fit), for
-/// at most the settings' outer iterations; `centres` as mixture_centres, over the space's own rows.
-void finish_in_mixture(const ShapeSpace& space, const Points& normals, const Observation& observation,
+/// at most the settings' outer iterations; `centres` as mixture_centres, over the space's own rows. Returns
+/// the mixture's final standard deviation per axis (normalised length).
+double finish_in_mixture(const ShapeSpace& space, const Points& normals, const Observation& observation,
                        const Points& targets, const std::vector<bool>& centres,
                        const RegistrationSettings& settings, SpaceSolution& solution);
 

@@ -156,12 +156,13 @@ Points without_strays(const Observation& observation, const Points& fitted) {
 }
 
 // The observed points a mixture finishes the space fits on (mixture_fit.hpp), or none when the observation
-// reads no noisier than the setting against the holistic fit `fitted`.
+// reads no noisier than the setting against the holistic fit `fitted`; `finish` records the noise read.
 std::optional<Points> mixture_targets(const Observation& observation, const Points& fitted,
-                                      const RegistrationSettings& settings) {
+                                      const RegistrationSettings& settings, MixtureFinish& finish) {
   Points targets = without_strays(observation, fitted);
-  if (detail::observed_noise(targets, fitted, detail::canonical_normals(fitted)) <= settings.objective.mixture_noise)
-    return std::nullopt;
+  finish.noise = detail::observed_noise(targets, fitted, detail::canonical_normals(fitted));
+  finish.applied = finish.noise > settings.objective.mixture_noise;
+  if (!finish.applied) return std::nullopt;
   return targets;
 }
 
@@ -225,10 +226,11 @@ RegistrationResult register_observation(const CategoryModel& model, const Points
     detail::SearchOutcome search = detail::search_poses(
         holistic, normals, observation, poses, Eigen::VectorXd::Zero(holistic.dimensions()), settings);
     deformed_normalised = search.best.pose.apply(holistic.deformed(search.best.latent));
-    mixture = mixture_targets(observation, deformed_normalised, settings);
+    mixture = mixture_targets(observation, deformed_normalised, settings, result.mixture);
     if (mixture) {
       centres = detail::mixture_centres(model.canonical);
-      detail::finish_in_mixture(holistic, normals, observation, *mixture, centres, settings, search.best);
+      result.mixture.sigma =
+          detail::finish_in_mixture(holistic, normals, observation, *mixture, centres, settings, search.best);
       deformed_normalised = search.best.pose.apply(holistic.deformed(search.best.latent));
     }
     record(result, holistic.name, search, model, centroid);

@@ -39,6 +39,13 @@ nlohmann::json refinement_json(const core::RefinementField& field, const core::R
           {"max_movement_normalised", field.max_movement}};
 }
 
+// Whether the space fits ended in a Gaussian mixture, on the noise read off the holistic fit.
+nlohmann::json mixture_json(const core::MixtureFinish& mixture) {
+  return {{"applied", mixture.applied},
+          {"noise_normalised", mixture.noise},
+          {"sigma_normalised", mixture.sigma}};
+}
+
 }  // namespace
 
 nlohmann::json result_json(const core::RegistrationResult& result, const core::RegistrationSettings& settings,
@@ -72,6 +79,7 @@ nlohmann::json result_json(const core::RegistrationResult& result, const core::R
             {"mean_normalised", result.fit.mean_normalised},
             {"p90_normalised", result.fit.p90_normalised},
             {"strays", result.fit.strays}}},
+          {"mixture", mixture_json(result.mixture)},
           {"refinement", refinement_json(result.refinement, settings.refinement)},
           {"seconds", result.seconds}};
 }

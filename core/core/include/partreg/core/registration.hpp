@@ -68,6 +68,14 @@ struct FitStatistics {
   int strays = 0;  ///< observed points left out as strays (SamplingSettings::stray_limit): no part of the fit
 };
 
+/// Whether the space fits ended in a Gaussian mixture rather than closest points: the observation's noise,
+/// read off the holistic space fit, against ObjectiveSettings::mixture_noise (docs/registration.md, "Noise").
+struct MixtureFinish {
+  bool applied = false;  ///< the holistic fit, and the coupled joint problem after it, continued in the mixture
+  double noise = 0.0;    ///< the noise read, / the model's diagonal (0: not read, as for partwise)
+  double sigma = 0.0;    ///< the mixture's final standard deviation per axis after the holistic fit, / the diagonal
+};
+
 struct RegistrationResult {
   Variant variant = Variant::holistic;
   std::vector<SpaceFit> fits;        ///< holistic first where it ran, then the parts
@@ -77,6 +85,7 @@ struct RegistrationResult {
   /// The fit beyond the space (observed frame, data units; empty unless RefinementSettings::enabled):
   /// `deformed` holds the space fit moved by it, and deformation.hpp moves meshes, points and frames alike.
   RefinementField refinement;
+  MixtureFinish mixture;
   FitStatistics fit;
   double seconds = 0.0;
 };
