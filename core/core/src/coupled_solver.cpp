@@ -198,7 +198,7 @@ struct Part {
   const ShapeSpace* space;
   Eigen::Vector3d centre;  // canonical centroid (normalised)
   double radius;           // RMS distance of the canonical points from it
-  Points normals;          // of the space's canonical points; empty without a viewpoint
+  ViewSurface surface;     // of the space's canonical points; empty without a viewpoint
 };
 
 // The canonical points of part `a` within `radius` of part `b`'s, and those of `b` within it of `a`'s.
@@ -264,21 +264,24 @@ struct Unknowns {
   }
 };
 
-// The object's posed deformed canonical points in holistic row order, and which face the viewpoint.
+// The object's posed deformed canonical points in holistic row order, and which the viewpoint sees (each
+// part's normals under its own pose; the whole object occludes, `spacing` the holistic points').
 Points assemble(const CategoryModel& model, const std::vector<Part>& parts, const Unknowns& unknowns,
-                const Observation& observation, std::vector<bool>& visible) {
+                const Observation& observation, double spacing, std::vector<bool>& visible) {
   Points posed(model.canonical.rows(), 3);
   visible.assign(static_cast<std::size_t>(model.canonical.rows()), true);
   for (std::size_t p = 0; p < parts.size(); ++p) {
     const Pose pose = unknowns.part_pose(parts[p], p);
     const Points own = pose.apply(parts[p].space->deformed(unknowns.latent[p]));
-    const std::vector<bool> own_visible = visible_rows(own, parts[p].normals, pose, observation.viewpoint);
+    const std::vector<bool> own_visible = facing_rows(own, parts[p].surface, pose, observation.viewpoint);
     const std::vector<int>& rows = parts[p].space->point_indices;
     for (std::size_t i = 0; i < rows.size(); ++i) {
       posed.row(rows[i]) = own.row(static_cast<Eigen::Index>(i));
       visible[static_cast<std::size_t>(rows[i])] = own_visible[i];
     }
   }
+  if (observation.viewpoint && !parts.empty() && parts.front().surface.normals.rows() > 0)
+    visible = seen_rows(posed, visible, *observation.viewpoint, spacing);
   return posed;
 }
 
@@ -298,7 +301,7 @@ std::vector<std::vector<WeightedPair>> pairs_by_part(const CategoryModel& model,
   return by_part;
 }
 
-std::vector<Part> describe_parts(const CategoryModel& model, const Points& normals) {
+std::vector<Part> describe_parts(const CategoryModel& model, const ViewSurface& surface) {
   std::vector<Part> parts;
   for (std::size_t s = 1; s < model.spaces.size(); ++s) {
     const ShapeSpace& space = model.spaces[s];
@@ -306,7 +309,8 @@ std::vector<Part> describe_parts(const CategoryModel& model, const Points& norma
     const double radius =
         std::sqrt((space.canonical.rowwise() - centre.transpose()).rowwise().squaredNorm().mean());
     parts.push_back(
-        {&space, centre, radius, normals.rows() ? select_rows(normals, space.point_indices) : Points()});
+        {&space, centre, radius,
+         surface.normals.rows() ? restricted(surface, space.point_indices, space.canonical) : ViewSurface()});
   }
   return parts;
 }
@@ -384,12 +388,12 @@ std::unique_ptr<ceres::CostFunction> make_seam_cost(const ShapeSpace& a, const E
                                     std::make_shared<const SeamSide>(seam_side(b, z, centre_b)), root_weight);
 }
 
-std::vector<SearchOutcome> solve_coupled(const CategoryModel& model, const Points& normals,
+std::vector<SearchOutcome> solve_coupled(const CategoryModel& model, const ViewSurface& surface,
                                          const Observation& observation, const SpaceSolution& holistic,
                                          const RegistrationSettings& settings, const Points* mixture_targets,
                                          const std::vector<bool>& centres) {
   const auto start = std::chrono::steady_clock::now();
-  const std::vector<Part> parts = describe_parts(model, normals);
+  const std::vector<Part> parts = describe_parts(model, surface);
   const std::vector<Seam> seams = find_seams(parts, settings.objective.seam_radius);
   Unknowns unknowns = start_from(model, holistic);
   std::vector<SearchOutcome> outcomes(parts.size());
@@ -415,7 +419,7 @@ std::vector<SearchOutcome> solve_coupled(const CategoryModel& model, const Point
   };
   for (int outer = 0; outer < settings.convergence.outer_iterations; ++outer) {
     std::vector<bool> visible;
-    const Points posed = assemble(model, parts, unknowns, observation, visible);
+    const Points posed = assemble(model, parts, unknowns, observation, surface.spacing, visible);
     const Correspondences pairs = correspond(posed, visible, observation, settings, &hints);
     if (pairs.from_canonical.empty() && pairs.from_observed.empty()) {
       had_pairs = false;
@@ -439,13 +443,13 @@ std::vector<SearchOutcome> solve_coupled(const CategoryModel& model, const Point
     Mixture mixture(*mixture_targets, centres);
     for (int step = 0; step < settings.convergence.outer_iterations; ++step) {
       std::vector<bool> visible;
-      const Points posed = assemble(model, parts, unknowns, observation, visible);
+      const Points posed = assemble(model, parts, unknowns, observation, surface.spacing, visible);
       const std::vector<WeightedPair> pairs = mixture.pairs(posed, visible);
       if (pairs.empty()) break;
       cost = solve_step(parts, seams, pairs_by_part(model, pairs), unknowns, settings);
       ++iterations;
       record_step();
-      if (mixture.update(assemble(model, parts, unknowns, observation, visible), settings.convergence.tolerance))
+      if (mixture.update(assemble(model, parts, unknowns, observation, surface.spacing, visible), settings.convergence.tolerance))
         break;
     }
   }

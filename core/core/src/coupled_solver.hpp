@@ -43,14 +43,14 @@ std::unique_ptr<ceres::CostFunction> make_seam_cost(const ShapeSpace& a, const E
                                                     const Points& z, double root_weight);
 
 /// Fits every part of `model` jointly, starting from the holistic fit `holistic` (its pose for the object,
-/// its deformation projected into each part's space for the latents, zero offsets). `normals`: outward
-/// normals of the holistic canonical points (used only with a viewpoint). Returns one outcome per part
+/// its deformation projected into each part's space for the latents, zero offsets). `surface`: the
+/// holistic canonical points' normals and spacing (used only with a viewpoint). Returns one outcome per part
 /// space (model.spaces[1..]), each with its part's effective pose (object pose then offset) and latent, the
 /// joint cost and the joint steps.
 /// With `mixture_targets` (a noisy observation), the closest-point steps are followed by a finish in the
 /// Gaussian mixture of those points (mixture_fit.hpp) centred on the `centres` rows of the canonical
 /// (mixture_centres); nullptr: closest points only.
-std::vector<SearchOutcome> solve_coupled(const CategoryModel& model, const Points& normals,
+std::vector<SearchOutcome> solve_coupled(const CategoryModel& model, const ViewSurface& surface,
                                          const Observation& observation, const SpaceSolution& holistic,
                                          const RegistrationSettings& settings, const Points* mixture_targets,
                                          const std::vector<bool>& centres);

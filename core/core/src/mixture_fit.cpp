@@ -74,7 +74,7 @@ bool Mixture::update(const Points& posed, double tolerance) {
   return settled;
 }
 
-double finish_in_mixture(const ShapeSpace& space, const Points& normals, const Observation& observation,
+double finish_in_mixture(const ShapeSpace& space, const ViewSurface& surface, const Observation& observation,
                        const Points& targets, const std::vector<bool>& centres,
                        const RegistrationSettings& settings, SpaceSolution& solution) {
   const auto start = std::chrono::steady_clock::now();
@@ -86,7 +86,7 @@ double finish_in_mixture(const ShapeSpace& space, const Points& normals, const O
   for (int step = 0; step < settings.convergence.outer_iterations; ++step) {
     const Points posed = solution.pose.apply(space.deformed(solution.latent));
     std::vector<WeightedPair> pairs =
-        mixture.pairs(posed, visible_rows(posed, normals, solution.pose, observation.viewpoint));
+        mixture.pairs(posed, visible_rows(posed, surface, solution.pose, observation.viewpoint));
     if (pairs.empty()) break;
     ceres::Problem problem;
     double* rotation = solution.pose.rotation.coeffs().data();

@@ -57,7 +57,7 @@ class Mixture {
 /// Continues a single space's fit in the mixture of `targets` from `solution` (its closest-point fit), for
 /// at most the settings' outer iterations; `centres` as mixture_centres, over the space's own rows. Returns
 /// the mixture's final standard deviation per axis (normalised length).
-double finish_in_mixture(const ShapeSpace& space, const Points& normals, const Observation& observation,
+double finish_in_mixture(const ShapeSpace& space, const ViewSurface& surface, const Observation& observation,
                        const Points& targets, const std::vector<bool>& centres,
                        const RegistrationSettings& settings, SpaceSolution& solution);
 

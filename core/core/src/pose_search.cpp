@@ -72,11 +72,11 @@ double trimmed_mean_distance(const Eigen::VectorXd& squared, double cap) {
 
 // Continues a candidate by `steps` outer iterations; the new steps are appended to its history. `hints`: its
 // closest points from its last round on the same problem (solve_space).
-void advance(SpaceSolution& candidate, int steps, const ShapeSpace& space, const Points& normals,
+void advance(SpaceSolution& candidate, int steps, const ShapeSpace& space, const ViewSurface& surface,
              const Observation& observation, RegistrationSettings settings, CorrespondenceHints* hints) {
   settings.convergence.outer_iterations = steps;
   SpaceSolution next =
-      solve_space(space, normals, observation, candidate.latent, candidate.pose, settings, hints);
+      solve_space(space, surface, observation, candidate.latent, candidate.pose, settings, hints);
   const auto append = [](auto& history, const auto& more) {
     history.insert(history.end(), more.begin(), more.end());
   };
@@ -122,11 +122,11 @@ ShapeSpace restricted_space(const ShapeSpace& space, const std::vector<int>& row
 // each; the finalists then run on the whole problem.
 struct CoarseProblem {
   ShapeSpace space;
-  Points normals;
+  ViewSurface surface;
   Observation observation;
 };
 
-std::optional<CoarseProblem> coarse_problem(const ShapeSpace& space, const Points& normals,
+std::optional<CoarseProblem> coarse_problem(const ShapeSpace& space, const ViewSurface& surface,
                                             const Observation& observation, int points) {
   const auto count = static_cast<std::size_t>(points);
   if (points <= 0 || (space.canonical.rows() <= points && observation.points.rows() <= points))
@@ -136,7 +136,7 @@ std::optional<CoarseProblem> coarse_problem(const ShapeSpace& space, const Point
   CoarseProblem coarse;
   const std::vector<int> canonical_rows = rows_of(space.canonical);
   coarse.space = restricted_space(space, canonical_rows);
-  if (normals.rows() > 0) coarse.normals = select_rows(normals, canonical_rows);
+  if (surface.normals.rows() > 0) coarse.surface = restricted(surface, canonical_rows, coarse.space.canonical);
   const std::vector<int> observed_rows = rows_of(observation.points);
   coarse.observation.points = select_rows(observation.points, observed_rows);
   coarse.observation.tree = std::make_unique<KdTree>(coarse.observation.points);
@@ -191,11 +191,11 @@ std::vector<Pose> starting_poses(const Eigen::Vector3d& centre, const Points& ca
   return poses;
 }
 
-double selection_score(const ShapeSpace& space, const Points& normals, const Observation& observation,
+double selection_score(const ShapeSpace& space, const ViewSurface& surface, const Observation& observation,
                        const SpaceSolution& solution, const RegistrationSettings& settings) {
   if (settings.initialisation.score == SelectionScore::cost) return solution.cost;
   const Points posed = solution.pose.apply(space.deformed(solution.latent));
-  const std::vector<bool> visible = visible_rows(posed, normals, solution.pose, observation.viewpoint);
+  const std::vector<bool> visible = visible_rows(posed, surface, solution.pose, observation.viewpoint);
   std::vector<int> rows;
   for (std::size_t m = 0; m < visible.size(); ++m)
     if (visible[m]) rows.push_back(static_cast<int>(m));
@@ -219,7 +219,7 @@ double selection_score(const ShapeSpace& space, const Points& normals, const Obs
   }
 }
 
-SearchOutcome search_poses(const ShapeSpace& space, const Points& normals, const Observation& observation,
+SearchOutcome search_poses(const ShapeSpace& space, const ViewSurface& surface, const Observation& observation,
                            const std::vector<Pose>& starts, const Eigen::VectorXd& latent,
                            const RegistrationSettings& settings) {
   const InitialisationSettings& init = settings.initialisation;
@@ -230,10 +230,10 @@ SearchOutcome search_poses(const ShapeSpace& space, const Points& normals, const
   }
   const auto finalists = static_cast<std::size_t>(std::max(1, init.finalists));
   const std::optional<CoarseProblem> coarse =
-      candidates.size() > finalists ? coarse_problem(space, normals, observation, init.screening_points)
+      candidates.size() > finalists ? coarse_problem(space, surface, observation, init.screening_points)
                                     : std::nullopt;
   const ShapeSpace& screen_space = coarse ? coarse->space : space;
-  const Points& screen_normals = coarse ? coarse->normals : normals;
+  const ViewSurface& screen_surface = coarse ? coarse->surface : surface;
   const Observation& screen_observation = coarse ? coarse->observation : observation;
   int steps = std::max(1, init.screening_iterations);
   while (candidates.size() > finalists) {
@@ -246,10 +246,10 @@ SearchOutcome search_poses(const ShapeSpace& space, const Points& normals, const
             const int budget =
                 std::min(steps, settings.convergence.outer_iterations - candidate.fit.iterations);
             if (budget > 0)
-              advance(candidate.fit, budget, screen_space, screen_normals, screen_observation, settings,
+              advance(candidate.fit, budget, screen_space, screen_surface, screen_observation, settings,
                       &candidate.hints);
             candidate.score =
-                selection_score(screen_space, screen_normals, screen_observation, candidate.fit, settings);
+                selection_score(screen_space, screen_surface, screen_observation, candidate.fit, settings);
           }
         },
         0, 1);
@@ -267,9 +267,9 @@ SearchOutcome search_poses(const ShapeSpace& space, const Points& normals, const
           const int left = settings.convergence.outer_iterations - candidate.fit.iterations;
           if (left > 0 && (coarse || !candidate.fit.converged))
             // The screening's hints index the coarse problem's points: the whole problem starts afresh.
-            advance(candidate.fit, left, space, normals, observation, settings,
+            advance(candidate.fit, left, space, surface, observation, settings,
                     coarse ? nullptr : &candidate.hints);
-          candidate.score = selection_score(space, normals, observation, candidate.fit, settings);
+          candidate.score = selection_score(space, surface, observation, candidate.fit, settings);
         }
       },
       0, 1);

@@ -29,14 +29,14 @@ struct SearchOutcome {
 /// Fits `space` from every pose in `starts`: each gets a few outer steps, the better half (by score) goes on
 /// with twice the steps, until `InitialisationSettings::finalists` remain; those run to convergence and the
 /// lowest score wins.
-SearchOutcome search_poses(const ShapeSpace& space, const Points& normals, const Observation& observation,
+SearchOutcome search_poses(const ShapeSpace& space, const ViewSurface& surface, const Observation& observation,
                            const std::vector<Pose>& starts, const Eigen::VectorXd& latent,
                            const RegistrationSettings& settings);
 
 /// The selection score of a fitted pose and latent: the mean of the robust (trimmed at the loss scale x 4)
-/// closest-point distances each way between the posed deformed canonical points that face the viewpoint and
+/// closest-point distances each way between the posed deformed canonical points the viewpoint sees and
 /// the observation; lower is better (normalised length).
-double selection_score(const ShapeSpace& space, const Points& normals, const Observation& observation,
+double selection_score(const ShapeSpace& space, const ViewSurface& surface, const Observation& observation,
                        const SpaceSolution& solution, const RegistrationSettings& settings);
 
 }  // namespace partreg::core::detail

@@ -207,7 +207,7 @@ RegistrationResult register_observation(const CategoryModel& model, const Points
     throw UsageError("model '" + model.category + "' has no parts: use the holistic variant");
   Eigen::Vector3d centroid;
   const Observation observation = prepare_observation(model, observed, settings, centroid);
-  const Points normals = settings.viewpoint ? detail::canonical_normals(model.canonical) : Points();
+  const detail::ViewSurface surface = settings.viewpoint ? detail::view_surface(model.canonical) : detail::ViewSurface();
   const ShapeSpace& holistic = model.holistic();
   // Every space starts with the whole object's centroid on the observation's: a part keeps its place.
   const Eigen::Vector3d centre =
@@ -224,13 +224,13 @@ RegistrationResult register_observation(const CategoryModel& model, const Points
   std::vector<bool> centres;      // the canonical rows that centre it (computed only when it is used)
   if (settings.variant != Variant::partwise) {
     detail::SearchOutcome search = detail::search_poses(
-        holistic, normals, observation, poses, Eigen::VectorXd::Zero(holistic.dimensions()), settings);
+        holistic, surface, observation, poses, Eigen::VectorXd::Zero(holistic.dimensions()), settings);
     deformed_normalised = search.best.pose.apply(holistic.deformed(search.best.latent));
     mixture = mixture_targets(observation, deformed_normalised, settings, result.mixture);
     if (mixture) {
       centres = detail::mixture_centres(model.canonical);
       result.mixture.sigma =
-          detail::finish_in_mixture(holistic, normals, observation, *mixture, centres, settings, search.best);
+          detail::finish_in_mixture(holistic, surface, observation, *mixture, centres, settings, search.best);
       deformed_normalised = search.best.pose.apply(holistic.deformed(search.best.latent));
     }
     record(result, holistic.name, search, model, centroid);
@@ -258,7 +258,7 @@ RegistrationResult register_observation(const CategoryModel& model, const Points
     // Parts are independent given their initialisation: solve them in parallel, within the thread budget.
     std::vector<detail::SearchOutcome> parts(model.spaces.size() - 1);
     if (settings.variant == Variant::coupled)
-      parts = detail::solve_coupled(model, normals, observation, whole, settings,
+      parts = detail::solve_coupled(model, surface, observation, whole, settings,
                                     mixture ? &*mixture : nullptr, centres);
     else
       parallel_for(
@@ -267,9 +267,11 @@ RegistrationResult register_observation(const CategoryModel& model, const Points
           for (Eigen::Index i = begin; i < end; ++i) {
             const std::size_t p = static_cast<std::size_t>(i) + 1;
             const ShapeSpace& space = model.spaces[p];
-            const Points part_normals = normals.rows() ? rows_of(normals, space.point_indices) : Points();
+            const detail::ViewSurface part_surface = surface.normals.rows()
+                                                         ? detail::restricted(surface, space.point_indices, space.canonical)
+                                                         : detail::ViewSurface();
             if (settings.variant == Variant::partwise) {
-              parts[p - 1] = detail::search_poses(space, part_normals, observation, part_poses,
+              parts[p - 1] = detail::search_poses(space, part_surface, observation, part_poses,
                                                   Eigen::VectorXd::Zero(space.dimensions()), part_settings);
               fitted.step("fitted " + space.name);
               continue;
@@ -280,7 +282,7 @@ RegistrationResult register_observation(const CategoryModel& model, const Points
               own_settings.objective.direction = Direction::canonical_to_observed;
             const Eigen::VectorXd latent =
                 space.project_displacement(rows_of(holistic_displacement, space.point_indices));
-            parts[p - 1] = detail::search_poses(space, part_normals, own, {whole.pose}, latent, own_settings);
+            parts[p - 1] = detail::search_poses(space, part_surface, own, {whole.pose}, latent, own_settings);
             fitted.step("fitted " + space.name);
           }
         },

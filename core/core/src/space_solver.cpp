@@ -95,15 +95,22 @@ std::vector<WeightedPair> weighted_pairs(const Correspondences& pairs, const Reg
 }
 
 // Which canonical points face the viewpoint under the current pose (all of them without a viewpoint).
-std::vector<bool> visible_rows(const Points& posed, const Points& normals, const Pose& pose,
-                               const std::optional<Eigen::Vector3d>& viewpoint) {
-  std::vector<bool> visible(static_cast<std::size_t>(posed.rows()), true);
-  if (!viewpoint || normals.rows() != posed.rows()) return visible;
+std::vector<bool> facing_rows(const Points& posed, const ViewSurface& surface, const Pose& pose,
+                              const std::optional<Eigen::Vector3d>& viewpoint) {
+  std::vector<bool> facing(static_cast<std::size_t>(posed.rows()), true);
+  if (!viewpoint || surface.normals.rows() != posed.rows()) return facing;
   const Eigen::Matrix3d R = pose.rotation.toRotationMatrix();
   for (Eigen::Index m = 0; m < posed.rows(); ++m)
-    visible[static_cast<std::size_t>(m)] =
-        (R * normals.row(m).transpose()).dot(*viewpoint - posed.row(m).transpose()) > 0.0;
-  return visible;
+    facing[static_cast<std::size_t>(m)] =
+        (R * surface.normals.row(m).transpose()).dot(*viewpoint - posed.row(m).transpose()) > 0.0;
+  return facing;
+}
+
+std::vector<bool> visible_rows(const Points& posed, const ViewSurface& surface, const Pose& pose,
+                               const std::optional<Eigen::Vector3d>& viewpoint) {
+  std::vector<bool> facing = facing_rows(posed, surface, pose, viewpoint);
+  if (!viewpoint || surface.normals.rows() != posed.rows()) return facing;
+  return seen_rows(posed, facing, *viewpoint, surface.spacing);
 }
 
 Points Pose::apply(const Points& points) const {
@@ -131,7 +138,7 @@ double solve_inner(ceres::Problem& problem, const RegistrationSettings& settings
   return summary.final_cost;
 }
 
-SpaceSolution solve_space(const ShapeSpace& space, const Points& normals, const Observation& observation,
+SpaceSolution solve_space(const ShapeSpace& space, const ViewSurface& surface, const Observation& observation,
                           const Eigen::VectorXd& initial_latent, const Pose& initial_pose,
                           const RegistrationSettings& settings, CorrespondenceHints* hints) {
   const auto start = std::chrono::steady_clock::now();
@@ -147,7 +154,7 @@ SpaceSolution solve_space(const ShapeSpace& space, const Points& normals, const 
     const Eigen::Quaterniond before_rotation = solution.pose.rotation;
     const Points posed = solution.pose.apply(deformed_points(space, solution.latent));
     const Correspondences pairs =
-        correspond(posed, visible_rows(posed, normals, solution.pose, observation.viewpoint), observation,
+        correspond(posed, visible_rows(posed, surface, solution.pose, observation.viewpoint), observation,
                    settings, &last);
     if (pairs.from_canonical.empty() && pairs.from_observed.empty()) {
       solution.had_pairs = false;

@@ -12,6 +12,7 @@ class Problem;
 
 #include "moment_cost.hpp"
 #include "partreg/core/kdtree.hpp"
+#include "visibility.hpp"
 #include "partreg/core/registration_settings.hpp"
 #include "partreg/core/shape_space.hpp"
 
@@ -86,8 +87,13 @@ Correspondences correspond(const Points& posed, const std::vector<bool>& visible
 /// direction's 1 / count.
 std::vector<WeightedPair> weighted_pairs(const Correspondences& pairs, const RegistrationSettings& settings);
 
-/// Which rows of `posed` (a space's posed canonical points) face the viewpoint; all of them without one.
-std::vector<bool> visible_rows(const Points& posed, const Points& normals, const Pose& pose,
+/// Which rows of `posed` (a space's posed canonical points, `surface` theirs) face the viewpoint by their
+/// normals under `pose`; all of them without a viewpoint.
+std::vector<bool> facing_rows(const Points& posed, const ViewSurface& surface, const Pose& pose,
+                              const std::optional<Eigen::Vector3d>& viewpoint);
+
+/// Which rows of `posed` the viewpoint sees (visibility.hpp's seen_rows); all of them without a viewpoint.
+std::vector<bool> visible_rows(const Points& posed, const ViewSurface& surface, const Pose& pose,
                                const std::optional<Eigen::Vector3d>& viewpoint);
 
 /// The pose's constraints every solver applies: the rotation on the quaternion manifold, the scale fixed or
@@ -99,10 +105,10 @@ void constrain_pose(ceres::Problem& problem, double* rotation, double* scale,
 /// unknowns; one thread, since parts and hypotheses run in parallel above); returns the final cost.
 double solve_inner(ceres::Problem& problem, const RegistrationSettings& settings);
 
-/// Fits `space` from the initial latent and pose. `normals` are outward normals of the space's canonical
-/// points (used only with a viewpoint). `hints` (optional): the closest points of an earlier fit of the same
+/// Fits `space` from the initial latent and pose. `surface`: the space's canonical points' normals and spacing
+/// (used only with a viewpoint). `hints` (optional): the closest points of an earlier fit of the same
 /// space to the same observation, read and updated (a fit continued in rounds keeps them between rounds).
-SpaceSolution solve_space(const ShapeSpace& space, const Points& normals, const Observation& observation,
+SpaceSolution solve_space(const ShapeSpace& space, const ViewSurface& surface, const Observation& observation,
                           const Eigen::VectorXd& initial_latent, const Pose& initial_pose,
                           const RegistrationSettings& settings, CorrespondenceHints* hints = nullptr);
 

@@ -1,0 +1,89 @@
+// Which canonical points a viewpoint sees (core/core/src/visibility.hpp): occlusion by a depth buffer, with the
+// facing test for grazing points. Shapes whose answer is known: a closed sphere and an open bowl.
+#include "visibility.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <iostream>
+
+#include "space_solver.hpp"
+
+namespace partreg::core::detail {
+namespace {
+
+// `count` points spread evenly over the unit sphere (a Fibonacci lattice), scaled by `radius`.
+Points sphere(int count, double radius) {
+  Points points(count, 3);
+  const double golden = M_PI * (3.0 - std::sqrt(5.0));
+  for (int i = 0; i < count; ++i) {
+    const double y = 1.0 - (2.0 * i + 1.0) / count, r = std::sqrt(1.0 - y * y);
+    points.row(i) << r * std::cos(golden * i), y, r * std::sin(golden * i);
+  }
+  return radius * points;
+}
+
+// The lower half of a shell: an inner and an outer hemisphere 0.02 apart, opening upwards (+y).
+Points bowl(int count) {
+  const Points inner = sphere(count, 0.45), outer = sphere(count, 0.47);
+  std::vector<Eigen::RowVector3d> kept;
+  for (const Points* side : {&inner, &outer})
+    for (Eigen::Index i = 0; i < side->rows(); ++i)
+      if ((*side)(i, 1) < 0.0) kept.push_back(side->row(i));
+  Points points(static_cast<Eigen::Index>(kept.size()), 3);
+  for (std::size_t i = 0; i < kept.size(); ++i) points.row(static_cast<Eigen::Index>(i)) = kept[i];
+  return points;
+}
+
+TEST(Visibility, ASphereHidesItsFarSideAndKeepsItsRim) {
+  const Points points = sphere(3000, 0.3);  // about as dense as a canonical of 1000 points, diagonal 1
+  const Eigen::Vector3d viewpoint(0.0, 0.0, 2.0);
+  const ViewSurface surface = view_surface(points);
+  const std::vector<bool> seen = visible_rows(points, surface, Pose(), viewpoint);
+  // The depth buffer alone, as if no point faced the viewpoint.
+  const std::vector<bool> unoccluded =
+      seen_rows(points, std::vector<bool>(static_cast<std::size_t>(points.rows()), false), viewpoint, surface.spacing);
+  int far_seen = 0, near_hidden = 0, rim = 0, rim_seen = 0, rim_unoccluded = 0;
+  for (Eigen::Index i = 0; i < points.rows(); ++i) {
+    const double z = points(i, 2);
+    if (z < -0.05) far_seen += seen[i];
+    if (z > 0.1) near_hidden += !seen[i];
+    // Just inside the rim as the viewpoint sees it (its rays graze the sphere at z = 0.3^2 / 2 = 0.045).
+    if (z > 0.05 && z < 0.1) ++rim, rim_seen += seen[i], rim_unoccluded += unoccluded[i];
+  }
+  EXPECT_EQ(far_seen, 0) << "the far side is behind the near side";
+  EXPECT_EQ(near_hidden, 0) << "nothing is in front of the near side";
+  ASSERT_GT(rim, 20);
+  std::cout << "rim: " << rim << " points, " << rim_seen << " seen, " << rim_unoccluded << " by depth alone\n";
+  EXPECT_GE(rim_seen, 0.8 * rim) << "grazing points face the viewpoint and are kept";
+  EXPECT_LT(rim_unoccluded, 0.5 * rim) << "the buffer alone loses them: the facing clause is what keeps them";
+}
+
+TEST(Visibility, ABowlSeenFromAboveShowsItsInsideThoughItsNormalsPointOut) {
+  const Points points = bowl(1600);
+  const Eigen::Vector3d viewpoint(0.0, 3.0, 0.0);
+  const ViewSurface surface = view_surface(points);
+  const std::vector<bool> facing = facing_rows(points, surface, Pose(), viewpoint);
+  const std::vector<bool> seen = visible_rows(points, surface, Pose(), viewpoint);
+  int inside = 0, inside_facing = 0, inside_seen = 0;
+  for (Eigen::Index i = 0; i < points.rows(); ++i)
+    if (points.row(i).norm() < 0.46 && points(i, 1) < -0.3) {  // the inner surface's floor
+      ++inside;
+      inside_facing += facing[i];
+      inside_seen += seen[i];
+    }
+  ASSERT_GT(inside, 50);
+  // Normals turned away from the centroid point down, into the wall, on the floor of a bowl: the facing test
+  // alone hides the very surface the camera looks at.
+  EXPECT_LT(inside_facing, 0.1 * inside);
+  EXPECT_EQ(inside_seen, inside) << "nothing lies in front of the bowl's floor";
+}
+
+TEST(Visibility, WithoutAViewpointEveryPointCounts) {
+  const Points points = sphere(200, 0.5);
+  const std::vector<bool> seen = visible_rows(points, view_surface(points), Pose(), std::nullopt);
+  EXPECT_EQ(std::count(seen.begin(), seen.end(), true), 200);
+}
+
+}  // namespace
+}  // namespace partreg::core::detail
