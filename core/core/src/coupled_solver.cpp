@@ -308,9 +308,11 @@ std::vector<Part> describe_parts(const CategoryModel& model, const ViewSurface& 
     const Eigen::Vector3d centre = space.canonical.colwise().mean().transpose();
     const double radius =
         std::sqrt((space.canonical.rowwise() - centre.transpose()).rowwise().squaredNorm().mean());
-    parts.push_back(
-        {&space, centre, radius,
-         surface.normals.rows() ? restricted(surface, space.point_indices, space.canonical) : ViewSurface()});
+    // Only the part's normals are used (facing_rows): the whole object occludes, at the whole's spacing.
+    const ViewSurface own = surface.normals.rows()
+                                ? ViewSurface{select_rows(surface.normals, space.point_indices), surface.spacing}
+                                : ViewSurface();
+    parts.push_back({&space, centre, radius, own});
   }
   return parts;
 }
