@@ -12,6 +12,7 @@
 #include "partreg/core/synthetic.hpp"
 #include "partreg/core/training.hpp"
 #include "partreg/core/truth_errors.hpp"
+#include "support/test_shapes.hpp"
 
 namespace partreg::core {
 namespace {
@@ -272,6 +273,31 @@ TEST(Refinement, ReachesSurfaceTheSpaceFitMissedByMoreThanHalfAGate) {
             << at_default << ", gate " << half_gate.gate << " " << at_half << "\n";
   EXPECT_LT(at_default, 0.02);
   EXPECT_GT(at_half, 0.04);
+}
+
+TEST(Refinement, FollowsTheInsideOfABowlSeenFromAbove) {
+  // A bowl seen from above shows its inner floor, which sits 5% higher than the fit put it (a mound a fifth of
+  // the bowl wide). Which fitted points were seen is decided by occlusion from the viewpoint: normals turned away
+  // from the centroid point down on that floor, and the test they alone made left the mound unrefined (0.05 off).
+  const Points fitted = testing::open_bowl(1600);
+  Points observed(0, 3);
+  for (Eigen::Index i = 0; i < fitted.rows(); ++i)
+    if (fitted.row(i).norm() < 0.46) {  // the inner surface: the outer one is behind it from above
+      Eigen::RowVector3d p = fitted.row(i);
+      p.y() += 0.05 * std::exp(-(p.x() * p.x() + p.z() * p.z()) / (2.0 * 0.1 * 0.1));
+      observed.conservativeResize(observed.rows() + 1, 3);
+      observed.row(observed.rows() - 1) = p;
+    }
+  const Eigen::Vector3d viewpoint(0.0, 3.0, 0.0);
+  const RefinementField field = refine_fit(fitted, observed, viewpoint, RefinementSettings{});
+  Eigen::Index floor = 0;  // the inner floor's lowest point, under the mound's top
+  (fitted.rowwise().norm().array() < 0.46).select(fitted.col(1).array(), 1.0).minCoeff(&floor);
+  const Eigen::RowVector3d refined = fitted.row(floor) + field.displacement_at(fitted.row(floor));
+  const double left = std::abs(refined.y() - (fitted(floor, 1) + 0.05));
+  std::cout << "observed " << field.observed << " of " << field.points << "; the mound's top " << left
+            << " off (0.05 before)\n";
+  EXPECT_GT(field.observed, 0.8 * static_cast<double>(observed.rows())) << "most of the inside counts as seen";
+  EXPECT_LT(left, 0.015);
 }
 
 TEST(Refinement, NothingObservedNearbyLeavesTheSpaceFit) {

@@ -8,35 +8,16 @@
 #include <iostream>
 
 #include "space_solver.hpp"
+#include "support/test_shapes.hpp"
 
 namespace partreg::core::detail {
 namespace {
 
-// `count` points spread evenly over the unit sphere (a Fibonacci lattice), scaled by `radius`.
-Points sphere(int count, double radius) {
-  Points points(count, 3);
-  const double golden = M_PI * (3.0 - std::sqrt(5.0));
-  for (int i = 0; i < count; ++i) {
-    const double y = 1.0 - (2.0 * i + 1.0) / count, r = std::sqrt(1.0 - y * y);
-    points.row(i) << r * std::cos(golden * i), y, r * std::sin(golden * i);
-  }
-  return radius * points;
-}
-
-// The lower half of a shell: an inner and an outer hemisphere 0.02 apart, opening upwards (+y).
-Points bowl(int count) {
-  const Points inner = sphere(count, 0.45), outer = sphere(count, 0.47);
-  std::vector<Eigen::RowVector3d> kept;
-  for (const Points* side : {&inner, &outer})
-    for (Eigen::Index i = 0; i < side->rows(); ++i)
-      if ((*side)(i, 1) < 0.0) kept.push_back(side->row(i));
-  Points points(static_cast<Eigen::Index>(kept.size()), 3);
-  for (std::size_t i = 0; i < kept.size(); ++i) points.row(static_cast<Eigen::Index>(i)) = kept[i];
-  return points;
-}
+using testing::fibonacci_sphere;
+using testing::open_bowl;
 
 TEST(Visibility, ASphereHidesItsFarSideAndKeepsItsRim) {
-  const Points points = sphere(3000, 0.3);  // about as dense as a canonical of 1000 points, diagonal 1
+  const Points points = fibonacci_sphere(3000, 0.3);  // about as dense as a canonical of 1000 points, diagonal 1
   const Eigen::Vector3d viewpoint(0.0, 0.0, 2.0);
   const ViewSurface surface = view_surface(points);
   const std::vector<bool> seen = visible_rows(points, surface, Pose(), viewpoint);
@@ -60,7 +41,7 @@ TEST(Visibility, ASphereHidesItsFarSideAndKeepsItsRim) {
 }
 
 TEST(Visibility, ABowlSeenFromAboveShowsItsInsideThoughItsNormalsPointOut) {
-  const Points points = bowl(1600);
+  const Points points = open_bowl(1600);
   const Eigen::Vector3d viewpoint(0.0, 3.0, 0.0);
   const ViewSurface surface = view_surface(points);
   const std::vector<bool> facing = facing_rows(points, surface, Pose(), viewpoint);
@@ -80,7 +61,7 @@ TEST(Visibility, ABowlSeenFromAboveShowsItsInsideThoughItsNormalsPointOut) {
 }
 
 TEST(Visibility, WithoutAViewpointEveryPointCounts) {
-  const Points points = sphere(200, 0.5);
+  const Points points = fibonacci_sphere(200, 0.5);
   const std::vector<bool> seen = visible_rows(points, view_surface(points), Pose(), std::nullopt);
   EXPECT_EQ(std::count(seen.begin(), seen.end(), true), 200);
 }

@@ -58,12 +58,7 @@ TEST(ViewCaster, AClosedSphereShowsOnlyTheSideFacingTheCamera) {
 TEST(ViewCaster, ACloudViewIsTheSubsetOfPointsOnTheNearSide) {
   // Points on a unit sphere (Fibonacci lattice): a view keeps the cloud's own points, near side only.
   const int count = 2000;
-  core::Points cloud(count, 3);
-  for (int i = 0; i < count; ++i) {
-    const double y = 1 - 2 * (i + 0.5) / count, r = std::sqrt(1 - y * y),
-                 phi = i * M_PI * (3 - std::sqrt(5.0));
-    cloud.row(i) << r * std::cos(phi), y, r * std::sin(phi);
-  }
+  const core::Points cloud = testing::fibonacci_sphere(count, 1.0);
   const eval::ViewCaster caster(cloud);
   const Eigen::Vector3d direction = Eigen::Vector3d(1, 1, 0).normalized();
   const eval::View view = caster.cast(direction);

@@ -5,6 +5,7 @@
 #include <Eigen/Geometry>
 #include <cmath>
 #include <random>
+#include <vector>
 
 #include "partreg/core/types.hpp"
 
@@ -26,6 +27,31 @@ inline core::Points asymmetric_shape(int count, std::uint64_t seed) {
       points.row(i) << 0.55 + ring * std::cos(u), 0.04 * std::sin(2.0 * v), 0.1 + ring * std::sin(u) * 0.7;
     }
   }
+  return points;
+}
+
+/// `count` points spread evenly over a sphere of `radius` about the origin (a Fibonacci lattice).
+inline core::Points fibonacci_sphere(int count, double radius) {
+  core::Points points(count, 3);
+  const double golden = M_PI * (3.0 - std::sqrt(5.0));
+  for (int i = 0; i < count; ++i) {
+    const double y = 1.0 - (2.0 * i + 1.0) / count, r = std::sqrt(1.0 - y * y);
+    points.row(i) << r * std::cos(golden * i), y, r * std::sin(golden * i);
+  }
+  return radius * points;
+}
+
+/// The lower half of a shell about the origin, opening upwards (+y): an inner hemisphere of radius 0.45 and an
+/// outer one 0.02 further out, each the lower half of a `count`-point sphere. A concave shape whose inside
+/// faces up while normals turned away from its centroid point down.
+inline core::Points open_bowl(int count) {
+  const core::Points inner = fibonacci_sphere(count, 0.45), outer = fibonacci_sphere(count, 0.47);
+  std::vector<Eigen::RowVector3d> kept;
+  for (const core::Points* side : {&inner, &outer})
+    for (Eigen::Index i = 0; i < side->rows(); ++i)
+      if ((*side)(i, 1) < 0.0) kept.push_back(side->row(i));
+  core::Points points(static_cast<Eigen::Index>(kept.size()), 3);
+  for (std::size_t i = 0; i < kept.size(); ++i) points.row(static_cast<Eigen::Index>(i)) = kept[i];
   return points;
 }
 
