@@ -133,7 +133,9 @@ RefinementField refine_fit(const Points& fitted, const Points& observed,
   check(fitted, "fitted");
   check(observed, "observed");
   const KdTree observed_tree(observed);
-  const detail::ViewSurface surface = detail::view_surface(fitted);
+  // The spacing is for the depth buffer: without a viewpoint only the normals are read (the noise below).
+  const detail::ViewSurface surface =
+      viewpoint ? detail::view_surface(fitted) : detail::ViewSurface{detail::canonical_normals(fitted), 0.0};
   const std::vector<int> seen = observed_rows(fitted, surface, observed_tree, viewpoint, settings.gate);
   RefinementField field;
   field.points = static_cast<int>(fitted.rows());
