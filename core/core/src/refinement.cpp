@@ -13,6 +13,7 @@
 #include "partreg/core/kdtree.hpp"
 #include "partreg/core/sampling.hpp"
 #include "point_normals.hpp"
+#include "space_solver.hpp"
 #include "visibility.hpp"
 
 namespace partreg::core {
@@ -67,17 +68,13 @@ void check(const RefinementSettings& s) {
   if (!(s.noise_width >= 0.0)) throw UsageError("the refinement's noise width must be zero or positive");
 }
 
-// Which fitted points were observed: seen from the viewpoint (when known; visibility.hpp, with the fitted
-// points' own normals and spacing) and within the gate of an observed point. A normal facing the viewpoint
-// alone was wrong inside concave shells (a bowl's or a mug's inner wall) and saw through the body.
+// Which fitted points were observed: seen from the viewpoint (when known; the registration's own test,
+// visible_rows, with the fitted points' own normals and spacing, already posed) and within the gate of an
+// observed point. A normal facing the viewpoint alone was wrong inside concave shells (a bowl's or a mug's inner
+// wall) and saw through the body.
 std::vector<int> observed_rows(const Points& fitted, const detail::ViewSurface& surface, const KdTree& observed_tree,
                                const std::optional<Eigen::Vector3d>& viewpoint, double gate) {
-  std::vector<bool> seen(static_cast<std::size_t>(fitted.rows()), true);
-  if (viewpoint) {
-    for (Eigen::Index m = 0; m < fitted.rows(); ++m)
-      seen[static_cast<std::size_t>(m)] = surface.normals.row(m).dot(viewpoint->transpose() - fitted.row(m)) > 0.0;
-    seen = detail::seen_rows(fitted, seen, *viewpoint, surface.spacing);
-  }
+  const std::vector<bool> seen = detail::visible_rows(fitted, surface, detail::Pose(), viewpoint);
   std::vector<int> rows;
   for (Eigen::Index m = 0; m < fitted.rows(); ++m)
     if (seen[static_cast<std::size_t>(m)] &&
