@@ -286,12 +286,15 @@ void bind_evaluation(py::module_& m) {
   m.def(
       "measure_errors",
       [](py::handle deformed, py::handle part, const std::vector<std::string>& part_names, py::handle truth,
-         std::optional<double> diagonal) {
+         std::optional<double> diagonal, py::handle truth_part) {
         const core::Points d = to_points(deformed, "deformed"), t = to_points(truth, "truth");
         const Eigen::VectorXi p = to_indices(part, "part");
+        const std::optional<Eigen::VectorXi> tp =
+            truth_part.is_none() ? std::nullopt : std::optional(to_indices(truth_part, "truth_part"));
         py::gil_scoped_release release;
         const core::TruthErrors e =
-            core::measure_against_truth(d, p, part_names, t, diagonal ? *diagonal : core::truth_diagonal(t));
+            core::measure_against_truth(d, p, part_names, t, diagonal ? *diagonal : core::truth_diagonal(t),
+                                        nullptr, tp ? &*tp : nullptr);
         py::gil_scoped_acquire acquire;
         py::dict figures;
         figures["diagonal"] = e.diagonal;
@@ -302,15 +305,21 @@ void bind_evaluation(py::module_& m) {
         figures["chamfer"] = e.chamfer;
         figures["chamfer_per_diagonal"] = e.chamfer_per_diagonal;
         figures["part_eq5_per_diagonal2"] = e.part_eq5_per_diagonal2;
+        if (e.own_part_rms_mean_per_diagonal) {
+          figures["own_part_rms_per_diagonal"] = e.own_part_rms_per_diagonal;
+          figures["own_part_rms_mean_per_diagonal"] = *e.own_part_rms_mean_per_diagonal;
+        }
         return figures;
       },
       py::arg("deformed"), py::arg("part"), py::arg("part_names"), py::arg("truth"),
-      py::arg("diagonal") = py::none(),
+      py::arg("diagonal") = py::none(), py::arg("truth_part") = py::none(),
       "Every error figure of deformed points (M, 3; part (M,) indexing part_names) against a dense sample of "
       "the true instance (N, 3), same frame and data units (core/truth_errors.hpp, the one home of them): "
       "eq5 "
       "and reverse_eq5 in data units squared, chamfer in data units, *_per_diagonal divided by D, "
-      "*_per_diagonal2 by D^2; D is `diagonal` or, when omitted, the truth's bounding-box diagonal.");
+      "*_per_diagonal2 by D^2; D is `diagonal` or, when omitted, the truth's bounding-box diagonal. With "
+      "truth_part (N,) indexing part_names, also each part against the same part of the truth "
+      "(own_part_rms_per_diagonal, and its mean over parts).");
 }
 
 }  // namespace

@@ -111,6 +111,41 @@ TEST_F(Cli, TrainRefusesLabelsMadeForAnotherMesh) {
   EXPECT_FALSE(std::filesystem::exists(dir / "m.prm"));
 }
 
+// Labels for two of three cubes: the first file's cube is the canonical, the second trains on its own parts
+// (training then measures its label propagation against them); a file listed twice counts once; two files
+// for one cube, or files naming different parts, are refused before anything is written.
+TEST_F(Cli, TrainTakesSeveralLabelsFilesAndRefusesOnesThatDisagree) {
+  std::filesystem::create_directories(dir / "cubes");
+  for (const char* name : {"a", "b", "c"})
+    std::filesystem::copy_file(cube(), dir / "cubes" / (std::string(name) + ".obj"),
+                               std::filesystem::copy_options::overwrite_existing);
+  const auto labels = [&](const std::string& file, const std::string& source, const std::string& second) {
+    write(file, R"({"format": "partreg-labels", "version": 1, "source": ")" + source +
+                    R"(", "parts": [{"name": "body", "color": [0, 0, 0]}, {"name": ")" + second +
+                    R"(", "color": [1, 1, 1]}], "target": "faces", "count": 12,
+                    "labels": [0, 0, 1, 1, 0, 0, 0, 0, 0, 0, 0, 0]})");
+    return path(file);
+  };
+  const std::string a = labels("a.json", "a.obj", "lid"), b = labels("b.json", "b.obj", "lid");
+  const Outcome train = run("train " + path("cubes") + " --labels " + a + " --labels " + b + " --labels " + a +
+                            " --points 300 --out " + path("m.prm"));
+  ASSERT_EQ(train.exit_code, 0) << train.output;
+  EXPECT_NE(train.output.find("canonical: a"), std::string::npos) << train.output;
+  EXPECT_NE(train.output.find("label propagation onto b:"), std::string::npos) << train.output;
+  EXPECT_EQ(train.output.find("label propagation onto c:"), std::string::npos) << train.output;
+
+  const Outcome twice = run("train " + path("cubes") + " --labels " + a + " --labels " +
+                            labels("a2.json", "a.obj", "lid") + " --out " + path("twice.prm"));
+  EXPECT_EQ(twice.exit_code, 2) << twice.output;
+  EXPECT_NE(twice.output.find("both label 'a'"), std::string::npos) << twice.output;
+  const Outcome other = run("train " + path("cubes") + " --labels " + a + " --labels " +
+                            labels("b2.json", "b.obj", "cap") + " --out " + path("other.prm"));
+  EXPECT_EQ(other.exit_code, 1) << other.output;
+  EXPECT_NE(other.output.find("names other parts"), std::string::npos) << other.output;
+  EXPECT_FALSE(std::filesystem::exists(dir / "twice.prm"));
+  EXPECT_FALSE(std::filesystem::exists(dir / "other.prm"));
+}
+
 TEST_F(Cli, TrainRefusesPartFoldersThatDisagreeAndWritesNoModel) {
   ASSERT_EQ(run("synth mug --out " + path("mugs") + " --instances 3").exit_code, 0);
   std::filesystem::rename(dir / "mugs/mug_001/handle.obj", dir / "mugs/mug_001/grip.obj");

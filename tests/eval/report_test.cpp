@@ -148,19 +148,54 @@ TEST(EvalReport, SeamGapsRoundTripAndShowForThePartVariantsOnly) {
   EXPECT_NE(full, std::string::npos) << tables;
   EXPECT_NE(tables.find("| mugs | 25.00 / 50.00 |"), std::string::npos) << tables;  // the partial view
 
-  // A format 2 file (before the seam columns) still reads, with no seam.
+  // Format 2 (before the seam columns) and format 3 (before the own-part columns) files still read.
   std::ifstream in(dir / "r.csv");
   std::string format, header, line;
   std::getline(in, format), std::getline(in, header), std::getline(in, line);
-  std::ofstream old(dir / "old.csv");
-  old << "# partreg evaluation rows, format 2\n"
-      << header.substr(0, header.rfind(",seam_gap_mean")) << "\n"
-      << line.substr(0, line.size() - 2) << "\n";  // holistic's row ends in its two empty seam fields
-  old.close();
-  const std::vector<eval::EvalRow> older = eval::read_rows_csv(dir / "old.csv");
-  ASSERT_EQ(older.size(), 1u);
-  EXPECT_FALSE(older[0].seam);
-  EXPECT_DOUBLE_EQ(older[0].errors.eq5_per_diagonal2, 4e-4);
+  const std::string format3_header = header.substr(0, header.rfind(",own_part_rms_mean"));
+  const std::string format3_line = line.substr(0, line.size() - 2);  // holistic ends in 2 empty own-part fields
+  std::ofstream(dir / "v2.csv") << "# partreg evaluation rows, format 2\n"
+                                << header.substr(0, header.rfind(",seam_gap_mean")) << "\n"
+                                << format3_line.substr(0, format3_line.size() - 2) << "\n";
+  std::ofstream(dir / "v3.csv") << "# partreg evaluation rows, format 3\n"
+                                << format3_header << "\n"
+                                << format3_line << "\n";
+  for (const char* file : {"v2.csv", "v3.csv"}) {
+    const std::vector<eval::EvalRow> older = eval::read_rows_csv(dir / file);
+    ASSERT_EQ(older.size(), 1u) << file;
+    EXPECT_FALSE(older[0].seam);
+    EXPECT_FALSE(older[0].errors.own_part_rms_mean_per_diagonal);
+    EXPECT_DOUBLE_EQ(older[0].errors.eq5_per_diagonal2, 4e-4);
+  }
+}
+
+TEST(EvalReport, OwnPartFiguresRoundTripAndShowPerPartAndTheirMean) {
+  // coupled, full views: handle 10% and 30% (mean 20%), body 2% both, means over parts 6% and 16% (11%).
+  std::vector<eval::EvalRow> rows = {row("coupled", -1, eval::Perturbation::none, -1, 4e-4),
+                                     row("coupled", -1, eval::Perturbation::none, -1, 4e-4),
+                                     row("coupled", -1, eval::Perturbation::noise, 0, 4e-4),
+                                     row("oracle-template", -1, eval::Perturbation::none, -1, 4e-4)};
+  rows[0].errors.own_part_rms_per_diagonal = {{"body", 0.02}, {"handle", 0.1}};
+  rows[0].errors.own_part_rms_mean_per_diagonal = 0.06;
+  rows[1].errors.own_part_rms_per_diagonal = {{"body", 0.02}, {"handle", 0.3}};
+  rows[1].errors.own_part_rms_mean_per_diagonal = 0.16;
+  rows[2].errors.own_part_rms_per_diagonal = {{"body", 0.9}, {"handle", 0.9}};  // perturbed: not shown
+  rows[2].errors.own_part_rms_mean_per_diagonal = 0.9;
+  testing::TempDir dir;
+  eval::write_rows_csv(dir / "r.csv", rows);
+  const std::vector<eval::EvalRow> back = eval::read_rows_csv(dir / "r.csv");
+  ASSERT_EQ(back.size(), rows.size());
+  ASSERT_TRUE(back[1].errors.own_part_rms_mean_per_diagonal);
+  EXPECT_DOUBLE_EQ(*back[1].errors.own_part_rms_mean_per_diagonal, 0.16);
+  EXPECT_DOUBLE_EQ(back[1].errors.own_part_rms_per_diagonal.at("handle"), 0.3);
+  EXPECT_FALSE(back[3].errors.own_part_rms_mean_per_diagonal);
+  EXPECT_TRUE(back[3].errors.own_part_rms_per_diagonal.empty());
+  const std::string tables = eval::markdown_report(back);
+  EXPECT_NE(tables.find("Each part against the same part of the truth, mugs, full views: symmetric RMS, % of "
+                        "the diagonal (truth_errors.hpp, own_part_rms_per_diagonal):\n\n| part | coupled |\n"
+                        "|---|---|\n| body | 2.00 |\n| handle | 20.00 |\n| mean over parts | 11.00 |"),
+            std::string::npos)
+      << tables;
 }
 
 TEST(EvalReport, ACsvFromElsewhereIsRefusedWithItsName) {

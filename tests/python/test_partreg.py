@@ -225,6 +225,21 @@ def test_measure_errors_known_answer(partreg):
     assert partreg.measure_errors(deformed, np.zeros(10, dtype=np.int32), ["whole"], deformed, 2.0)["eq5"] == 0.0
 
 
+def test_measure_errors_part_against_own_part(partreg):
+    # Two parts swapped end for end: the whole-truth figures are zero, each part is 5 from its own.
+    truth = np.array([[0.0, 0, 0], [1, 0, 0], [3, 0, 0], [-2, 0, 0]])
+    truth_part = np.array([0, 0, 1, 2], dtype=np.int32)
+    turned = truth[[0, 1, 3, 2]]
+    figures = partreg.measure_errors(turned, truth_part, ["body", "handle", "spout"], truth, 5.0,
+                                     truth_part=truth_part)
+    assert figures["symmetric_rms_per_diagonal"] == 0.0
+    assert figures["own_part_rms_per_diagonal"] == pytest.approx({"body": 0.0, "handle": 1.0, "spout": 1.0})
+    assert figures["own_part_rms_mean_per_diagonal"] == pytest.approx(2.0 / 3.0)
+    assert "own_part_rms_per_diagonal" not in partreg.measure_errors(turned, truth_part, ["b", "h", "s"], truth)
+    with pytest.raises(partreg.InputError):
+        partreg.measure_errors(turned, truth_part, ["b", "h", "s"], truth, truth_part=truth_part[:2])
+
+
 def test_measure_errors_equals_the_command_line(partreg, model, registered, cli_register, data_dir):
     # `register --truth` reads the true mug as 20000 surface samples with seed 2.
     truth = partreg.read_cloud(data_dir / "mugs" / "1a97f3c83016abca21d0de04f408950f.obj", mesh_samples=20000, seed=2)

@@ -38,7 +38,12 @@ nlohmann::json spaces_json(const core::CategoryModel& model);
 nlohmann::json settings_json(const std::vector<std::pair<std::string, std::string>>& values,
                              const std::set<std::string>& skip = {});
 
-using io::apply_labels_file;
+using io::apply_labels_files;
+
+/// --labels of train and eval (io::apply_labels_files): one or more labels files.
+inline constexpr const char* kLabelsHelp =
+    "labels files: the first gives the canonical its parts, each further one its own instance (which trains "
+    "on its own parts and, in eval, is scored against them)";
 
 /// "1280x960" -> {1280, 960}; UsageError naming `option` for anything else or a side below 1 pixel.
 std::pair<int, int> parse_size(const std::string& text, const std::string& option);

@@ -31,8 +31,9 @@ namespace {
 using Clock = std::chrono::steady_clock;
 
 struct EvalOptions {
-  std::string dataset_path, out_path, labels_path, canonical, protocol = "paper", shard = "1/1";
+  std::string dataset_path, out_path, canonical, protocol = "paper", shard = "1/1";
   std::vector<std::string> variants = core::enum_names<core::Variant>();
+  std::vector<std::filesystem::path> labels_paths;
   bool no_viewpoint = false, no_baselines = false;
   int folds = -1, views = -1;
   std::vector<int> levels;          // 1-based indices of the paper's five levels; empty = the protocol's
@@ -67,9 +68,9 @@ std::map<std::string, core::Points> read_correspondences(const fs::path& folder,
 eval::EvalInput load_input(EvalOptions& options) {
   io::Dataset dataset = io::read_dataset(options.dataset_path, options.dataset);
   eval::EvalInput input;
-  if (!options.labels_path.empty())
+  if (!options.labels_paths.empty())
     input.fixed_canonical =
-        apply_labels_file(dataset, options.labels_path, options.canonical, options.dataset);
+        apply_labels_files(dataset, options.labels_paths, options.canonical, options.dataset);
   std::cerr << "dataset " << dataset.name << ": " << dataset.instances.size() << " instances"
             << (dataset.part_names.empty() ? ", no parts" : "") << '\n';
   input.category = dataset.name;
@@ -213,7 +214,7 @@ void add_eval_command(CLI::App& app) {
   command->add_option("DATASET", o->dataset_path, "category folder (as for train)")->required();
   command->add_option("--out", o->out_path, "new folder: results.csv, tables.md, plots, run.json")
       ->required();
-  command->add_option("--labels", o->labels_path, "labels file giving the canonical its parts");
+  command->add_option("--labels", o->labels_paths, kLabelsHelp);
   command->add_option("--canonical", o->canonical, "instance the labels belong to (default: from the file)");
   command->add_option("--protocol", o->protocol, "paper | quick")->capture_default_str();
   command->add_option("--variants", o->variants, core::enum_choices<core::Variant>(", "))

@@ -23,7 +23,7 @@ struct TrainOptions {
   std::string dataset_path;
   std::string out_path;
   std::string canonical;
-  std::string labels_path;
+  std::vector<std::filesystem::path> labels_paths;
   std::string json_path;
   io::DatasetOptions dataset;
   core::TrainingSettings settings;
@@ -67,9 +67,9 @@ void run_train(TrainOptions& options) {
   io::Dataset dataset = io::read_dataset(options.dataset_path, options.dataset);
   std::cerr << "dataset " << dataset.name << ": " << dataset.instances.size() << " instances"
             << (dataset.part_names.empty() ? ", no parts" : "") << '\n';
-  if (!options.labels_path.empty())
+  if (!options.labels_paths.empty())
     options.settings.canonical =
-        apply_labels_file(dataset, options.labels_path, options.canonical, options.dataset);
+        apply_labels_files(dataset, options.labels_paths, options.canonical, options.dataset);
   for (const core::TrainingInstance& instance : dataset.instances)
     if (instance.points.rows() < options.settings.canonical_points &&
         options.settings.canonical == instance.name)
@@ -101,7 +101,7 @@ void add_train_command(CLI::App& app) {
       ->required();
   command->add_option("--out", options->out_path, "model file to write (.prm)")->required();
   command->add_option("--canonical", options->canonical, "instance to use as canonical (default: automatic)");
-  command->add_option("--labels", options->labels_path, "labels file giving the canonical its parts");
+  command->add_option("--labels", options->labels_paths, kLabelsHelp);
   command->add_option("--samples", options->dataset.points_per_instance, "surface samples per mesh instance")
       ->capture_default_str()
       ->check(point_count_range());

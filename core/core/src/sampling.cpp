@@ -174,6 +174,13 @@ std::vector<int> rows_with_neighbours(const Points& points, int neighbours, doub
   return kept;
 }
 
+std::vector<int> rows_with(const Eigen::VectorXi& part_of_row, int part) {
+  std::vector<int> rows;
+  for (Eigen::Index i = 0; i < part_of_row.size(); ++i)
+    if (part_of_row[i] == part) rows.push_back(static_cast<int>(i));
+  return rows;
+}
+
 Points select_rows(const Points& points, const std::vector<int>& rows) {
   Points selected(static_cast<Eigen::Index>(rows.size()), 3);
   for (std::size_t i = 0; i < rows.size(); ++i)

@@ -159,14 +159,6 @@ std::size_t find_canonical(const std::vector<TrainingInstance>& instances, const
   throw UsageError("no instance named '" + *settings.canonical + "' (instances: " + names + ")");
 }
 
-// The rows of `part` in a labelled sample.
-std::vector<int> rows_with(const Eigen::VectorXi& part_of_row, int part) {
-  std::vector<int> rows;
-  for (Eigen::Index i = 0; i < part_of_row.size(); ++i)
-    if (part_of_row[i] == part) rows.push_back(static_cast<int>(i));
-  return rows;
-}
-
 // Replaces each part that has fewer than `floor` points in `sample` by a farthest-point sample of its own
 // rows of `dense` (floor points, or all it has), so small parts are not starved by sampling of the whole.
 Target with_part_floor(Target sample, const Target& dense, int part_count, int floor) {

@@ -1,7 +1,10 @@
 #include "partreg/core/truth_errors.hpp"
 
+#include <cmath>
+
 #include "partreg/core/errors.hpp"
 #include "partreg/core/normalization.hpp"
+#include "partreg/core/sampling.hpp"
 
 namespace partreg::core {
 namespace {
@@ -28,6 +31,30 @@ std::map<std::string, double> per_part_mean(const Eigen::VectorXd& squared, cons
   return means;
 }
 
+// The headline's symmetric RMS between two point sets, in their units.
+double symmetric_rms(const Points& a, const Points& b) {
+  return 0.5 * (std::sqrt(squared_to_closest(a, KdTree(b)).mean()) +
+                std::sqrt(squared_to_closest(b, KdTree(a)).mean()));
+}
+
+// Each part of the deformed points against the same part of the truth, / D; a part missing from either side
+// is left out (a truth whose labels lack a part says nothing about it).
+std::map<std::string, double> own_part_rms(const Points& deformed, const Eigen::VectorXi& part,
+                                           const std::vector<std::string>& part_names, const Points& truth,
+                                           const Eigen::VectorXi& truth_part, double diagonal) {
+  if (part.size() != deformed.rows() || truth_part.size() != truth.rows())
+    throw InputError("part labels do not match the points they label (" + std::to_string(part.size()) +
+                     " for " + std::to_string(deformed.rows()) + " deformed, " +
+                     std::to_string(truth_part.size()) + " for " + std::to_string(truth.rows()) + " true)");
+  std::map<std::string, double> figures;
+  for (std::size_t p = 0; p < part_names.size(); ++p) {
+    const Points mine = select_rows(deformed, rows_with(part, static_cast<int>(p)));
+    const Points theirs = select_rows(truth, rows_with(truth_part, static_cast<int>(p)));
+    if (mine.rows() > 0 && theirs.rows() > 0) figures[part_names[p]] = symmetric_rms(mine, theirs) / diagonal;
+  }
+  return figures;
+}
+
 }  // namespace
 
 double closest_point_error(const Points& deformed, const Points& truth) {
@@ -45,14 +72,16 @@ double truth_diagonal(const Points& truth) { return bounding_box_diagonal(truth)
 
 TruthErrors measure_against_truth(const Points& deformed, const Eigen::VectorXi& part,
                                   const std::vector<std::string>& part_names, const Points& truth,
-                                  double diagonal, const Points* truth_of_row) {
+                                  double diagonal, const Points* truth_of_row,
+                                  const Eigen::VectorXi* truth_part) {
   if (truth.rows() == 0) throw InputError("cannot measure an error with an empty point set");
-  return measure_against_truth(deformed, part, part_names, KdTree(truth), diagonal, truth_of_row);
+  return measure_against_truth(deformed, part, part_names, KdTree(truth), diagonal, truth_of_row, truth_part);
 }
 
 TruthErrors measure_against_truth(const Points& deformed, const Eigen::VectorXi& part,
                                   const std::vector<std::string>& part_names, const KdTree& truth,
-                                  double diagonal, const Points* truth_of_row) {
+                                  double diagonal, const Points* truth_of_row,
+                                  const Eigen::VectorXi* truth_part) {
   if (deformed.rows() == 0) throw InputError("cannot measure an error with an empty point set");
   if (!(diagonal > 0.0))
     throw InputError("the ground truth has no extent (its diagonal is " + std::to_string(diagonal) + ")");
@@ -73,6 +102,15 @@ TruthErrors measure_against_truth(const Points& deformed, const Eigen::VectorXi&
     if (truth_of_row->rows() != deformed.rows())
       throw InputError("ground-truth correspondences do not match the deformed points");
     errors.correspondence_per_diagonal = (deformed - *truth_of_row).rowwise().norm().mean() / diagonal;
+  }
+  if (truth_part && !part_names.empty()) {
+    errors.own_part_rms_per_diagonal =
+        own_part_rms(deformed, part, part_names, truth.points(), *truth_part, diagonal);
+    if (!errors.own_part_rms_per_diagonal.empty()) {
+      double sum = 0.0;
+      for (const auto& entry : errors.own_part_rms_per_diagonal) sum += entry.second;
+      errors.own_part_rms_mean_per_diagonal = sum / errors.own_part_rms_per_diagonal.size();
+    }
   }
   return errors;
 }

@@ -17,18 +17,24 @@ namespace partreg::eval {
 namespace {
 
 // The first line names the layout's version (raised when a column changes meaning); the second the columns.
-// Format 3 added the two seam-gap columns at the end; format 2 files (without them) are still read.
-const char* const kFormatLine = "# partreg evaluation rows, format 3";
+// Format 3 added the two seam-gap columns at the end, format 4 the own-part figures after them; format 2 and
+// 3 files (without them) are still read.
+const char* const kFormatLine = "# partreg evaluation rows, format 4";
+const char* const kFormat3Line = "# partreg evaluation rows, format 3";
 const char* const kFormat2Line = "# partreg evaluation rows, format 2";
 #define PARTREG_FORMAT_2_COLUMNS                                                                      \
   "category,instance,canonical,fold,variant,view,direction_x,direction_y,direction_z,perturbation,"   \
   "level_index,paper_level,level,diagonal,observed_points,eq5,eq5_per_diagonal2,reverse_eq5,"         \
   "symmetric_rms_per_diagonal,chamfer,chamfer_per_diagonal,correspondence_per_diagonal,part_eq5_per_" \
   "diagonal2,seconds"
+#define PARTREG_FORMAT_3_COLUMNS PARTREG_FORMAT_2_COLUMNS ",seam_gap_mean,seam_gap_max"
 const char* const kFormat2Header = PARTREG_FORMAT_2_COLUMNS;
-const char* const kHeader = PARTREG_FORMAT_2_COLUMNS ",seam_gap_mean,seam_gap_max";
+const char* const kFormat3Header = PARTREG_FORMAT_3_COLUMNS;
+const char* const kHeader =
+    PARTREG_FORMAT_3_COLUMNS ",own_part_rms_mean_per_diagonal,own_part_rms_per_diagonal";
+#undef PARTREG_FORMAT_3_COLUMNS
 #undef PARTREG_FORMAT_2_COLUMNS
-constexpr std::size_t kFormat2Columns = 24, kColumns = 26;
+constexpr std::size_t kFormat2Columns = 24, kFormat3Columns = 26, kColumns = 28;
 
 // Part errors in one CSV field: "body=1.2e-05;handle=3.4e-05".
 std::string parts_field(const std::map<std::string, double>& parts) {
@@ -76,6 +82,10 @@ EvalRow parse_row(const std::vector<std::string>& f) {
     row.seam = core::SeamGap{};
     row.seam->mean = std::stod(f[24]);
     row.seam->max = std::stod(f[25]);
+  }
+  if (f.size() > kFormat3Columns && !f[26].empty()) {
+    row.errors.own_part_rms_mean_per_diagonal = std::stod(f[26]);
+    row.errors.own_part_rms_per_diagonal = parse_parts(f[27]);
   }
   return row;
 }
@@ -178,7 +188,9 @@ void write_rows_csv(const std::filesystem::path& path, const std::vector<EvalRow
       out << r.seam->mean << ',' << r.seam->max;
     else
       out << ',';
-    out << '\n';
+    out << ',';
+    if (r.errors.own_part_rms_mean_per_diagonal) out << *r.errors.own_part_rms_mean_per_diagonal;
+    out << ',' << parts_field(r.errors.own_part_rms_per_diagonal) << '\n';
   }
   if (!out.flush()) throw InputError("cannot write " + path.string());
 }
@@ -189,13 +201,13 @@ std::vector<EvalRow> read_rows_csv(const std::filesystem::path& path) {
   std::string line;
   if (!std::getline(in, line) || line.rfind("# partreg evaluation rows", 0) != 0)
     throw InputError(path.string() + " is not a partreg evaluation CSV (its first line names no format)");
-  const bool format2 = line == kFormat2Line;
-  if (line != kFormatLine && !format2)
+  const bool format2 = line == kFormat2Line, format3 = line == kFormat3Line;
+  if (line != kFormatLine && !format2 && !format3)
     throw InputError(path.string() + " has another format (" + line.substr(2) + "; this partreg reads " +
-                     std::string(kFormatLine).substr(2) + " and format 2): run the evaluation again");
-  if (!std::getline(in, line) || line != (format2 ? kFormat2Header : kHeader))
+                     std::string(kFormatLine).substr(2) + ", 3 and 2): run the evaluation again");
+  if (!std::getline(in, line) || line != (format2 ? kFormat2Header : format3 ? kFormat3Header : kHeader))
     throw InputError(path.string() + " is not a partreg evaluation CSV (header differs)");
-  const std::size_t columns = format2 ? kFormat2Columns : kColumns;
+  const std::size_t columns = format2 ? kFormat2Columns : format3 ? kFormat3Columns : kColumns;
   std::vector<EvalRow> rows;
   for (int number = 3; std::getline(in, line); ++number) {
     if (line.empty()) continue;
@@ -288,6 +300,50 @@ void part_tables(std::ostringstream& out, const std::vector<EvalRow>& rows) {
         }
         out << "\n";
       }
+    }
+  }
+}
+
+// Each part against the same part of the truth (where the truth has its own parts), clean observations:
+// a row per part and the mean over parts, a column per variant (% of the diagonal).
+void own_part_tables(std::ostringstream& out, const std::vector<EvalRow>& rows) {
+  const std::vector<std::string> variants = variants_of(rows);
+  for (const std::string& category : categories_of(rows)) {
+    std::vector<std::string> parts;
+    for (const EvalRow& r : rows)
+      if (r.category == category)
+        for (const auto& entry : r.errors.own_part_rms_per_diagonal)
+          if (std::find(parts.begin(), parts.end(), entry.first) == parts.end()) parts.push_back(entry.first);
+    if (parts.empty()) continue;
+    for (bool partial : {false, true}) {
+      const auto keep = [&](const std::string& variant) {
+        return [&, variant](const EvalRow& r) {
+          return r.category == category && r.variant == variant && is_partial(r) == partial &&
+                 r.perturbation == Perturbation::none;
+        };
+      };
+      out << "\nEach part against the same part of the truth, " << category << ", "
+          << (partial ? "partial views" : "full views")
+          << ": symmetric RMS, % of the diagonal (truth_errors.hpp, own_part_rms_per_diagonal):\n\n";
+      header_row(out, "part", variants);
+      for (const std::string& part : parts) {
+        out << "| " << part << " |";
+        for (const std::string& variant : variants)
+          out << ' ' << cell(mean_of(rows, keep(variant), [&](const EvalRow& r) {
+                                const auto found = r.errors.own_part_rms_per_diagonal.find(part);
+                                return found == r.errors.own_part_rms_per_diagonal.end() ? std::nan("")
+                                                                                       : found->second;
+                              }), 100)
+              << " |";
+        out << "\n";
+      }
+      out << "| mean over parts |";
+      for (const std::string& variant : variants)
+        out << ' ' << cell(mean_of(rows, keep(variant), [](const EvalRow& r) {
+                              return r.errors.own_part_rms_mean_per_diagonal.value_or(std::nan(""));
+                            }), 100)
+            << " |";
+      out << "\n";
     }
   }
 }
@@ -437,6 +493,7 @@ std::string markdown_report(const std::vector<EvalRow>& rows) {
                    100, 2);
   }
   part_tables(out, rows);
+  own_part_tables(out, rows);
   seam_tables(out, rows);
   sweep_tables(out, rows);
   timing_table(out, rows);

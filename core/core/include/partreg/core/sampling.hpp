@@ -43,6 +43,9 @@ std::vector<int> subsample_indices(const Points& points, std::size_t count, doub
 /// rows or most rows repeat (a median of 0).
 std::vector<int> rows_with_neighbours(const Points& points, int neighbours, double limit);
 
+/// The rows labelled `part` (part index per row in `part_of_row`), in order.
+std::vector<int> rows_with(const Eigen::VectorXi& part_of_row, int part);
+
 /// The rows of `points` listed in `rows`, in that order.
 Points select_rows(const Points& points, const std::vector<int>& rows);
 

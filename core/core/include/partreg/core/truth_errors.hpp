@@ -29,6 +29,13 @@ struct TruthErrors {
   double chamfer_per_diagonal = 0.0;        ///< chamfer / D
   std::map<std::string, double> part_eq5_per_diagonal2;  ///< Eq. 5 over each part's deformed points / D^2
   std::optional<double> correspondence_per_diagonal;     ///< mean distance to the true correspondent / D
+  /// Each part against the same part of the truth (only when the truth has its own parts): the headline's
+  /// symmetric RMS between the deformed points of the part and the true points of that part, / D. A part
+  /// placed on another part's surface (a handle pressed onto the body) scores well against the whole truth
+  /// but not here.
+  std::map<std::string, double> own_part_rms_per_diagonal;
+  /// The mean of own_part_rms_per_diagonal over the parts (each part counts once, whatever its size).
+  std::optional<double> own_part_rms_mean_per_diagonal;
 };
 
 /// The paper's Eq. 5: mean over `deformed` of the squared distance to the closest point of `truth` (squared
@@ -42,15 +49,19 @@ double chamfer_distance(const Points& a, const Points& b);
 /// Every figure of `deformed` (deformed canonical points, observed frame, data units; part index per row in
 /// `part`, names in `part_names`) against `truth` (a dense sample of the whole true instance, same frame).
 /// `diagonal` is D (truth_diagonal() of the instance in its own frame). `truth_of_row` (rows as `deformed`,
-/// or null) holds where each canonical point truly is. InputError for empty sets or D <= 0.
+/// or null) holds where each canonical point truly is. `truth_part` (one index into `part_names` per truth
+/// point, or null) gives the truth's own parts, for own_part_rms_per_diagonal. InputError for empty sets,
+/// D <= 0 or rows that do not match.
 TruthErrors measure_against_truth(const Points& deformed, const Eigen::VectorXi& part,
                                   const std::vector<std::string>& part_names, const KdTree& truth,
-                                  double diagonal, const Points* truth_of_row = nullptr);
+                                  double diagonal, const Points* truth_of_row = nullptr,
+                                  const Eigen::VectorXi* truth_part = nullptr);
 
 /// The same with the truth as points (its KD-tree built here).
 TruthErrors measure_against_truth(const Points& deformed, const Eigen::VectorXi& part,
                                   const std::vector<std::string>& part_names, const Points& truth,
-                                  double diagonal, const Points* truth_of_row = nullptr);
+                                  double diagonal, const Points* truth_of_row = nullptr,
+                                  const Eigen::VectorXi* truth_part = nullptr);
 
 /// D of a true instance given in its own frame: its bounding-box diagonal (data units).
 double truth_diagonal(const Points& truth);

@@ -36,7 +36,8 @@ double mean_symmetric_rms_per_diagonal(const std::vector<EvalRow>& rows, const s
 
 /// The Markdown report: Tables 1 and 2 (mean Eq. 5 x 1e4 on full and partial views, per category and
 /// variant), the symmetric RMS figure of every variant and baseline with each variant's ratio to the oracle
-/// template (ratio of the means), Chamfer, per-part and correspondence errors, the sweeps per category (the
+/// template (ratio of the means), Chamfer, per-part (against the whole truth, and against the same part of
+/// a truth with parts) and correspondence errors, seam gaps, the sweeps per category (the
 /// variants only), and run times.
 std::string markdown_report(const std::vector<EvalRow>& rows);
 
