@@ -121,6 +121,9 @@ class SpaceFit:
     cost: float
     iterations: int
     seconds: float
+    hypotheses: int
+    score: float
+    runner_up_score: float
     @property
     def latent(self) -> Float64Array: ...
     @property

@@ -76,6 +76,11 @@ def test_register_equals_the_command_line(partreg, registered, cli_register, cli
         assert np.allclose(fit.T_observed_canonical, expected["T_observed_canonical"], rtol=0, atol=EXACT)
         assert fit.cost == pytest.approx(expected["cost"], rel=EXACT)
         assert fit.iterations == expected["iterations"]
+        assert fit.hypotheses == expected["pose_hypotheses"]
+        assert fit.score == pytest.approx(expected["selection_score"], rel=EXACT)
+        # None in the JSON (one start, as a hol+part part) is inf here.
+        runner_up = expected["runner_up_score"]
+        assert fit.runner_up_score == (np.inf if runner_up is None else pytest.approx(runner_up, rel=EXACT))
     for figure in ("mean", "p90", "mean_normalised", "p90_normalised"):
         assert getattr(registered.fit, figure) == pytest.approx(cli_register["fit"][figure], rel=EXACT)
     assert registered.fit.mean_normalised < 0.05, "a real mug fits within 5% of the diagonal"
