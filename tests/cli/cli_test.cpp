@@ -155,6 +155,35 @@ TEST_F(Cli, TrainRefusesPartFoldersThatDisagreeAndWritesNoModel) {
   EXPECT_FALSE(std::filesystem::exists(dir / "mug.prm"));
 }
 
+// A folder of part meshes as the truth (the synthetic mug's own parts): each part is scored against its own
+// as well, in the JSON and on the command line; a model without parts refuses such a truth.
+TEST_F(Cli, RegisterScoresEachPartAgainstItsOwnWhenTheTruthHasParts) {
+  ASSERT_EQ(run("synth mug --out " + path("mugs") + " --instances 4 --seed 3").exit_code, 0);
+  ASSERT_EQ(run("train " + path("mugs") + " --out " + path("mug.prm") + " --points 300").exit_code, 0);
+  const Outcome good = run("register " + path("mug.prm") + " " + path("mugs/ground_truth/mug_003.ply") +
+                           " --variant coupled --json " + path("r.json") + " --truth " + path("mugs/mug_003"));
+  ASSERT_EQ(good.exit_code, 0) << good.output;
+  EXPECT_NE(good.output.find("each part against its own: mean "), std::string::npos) << good.output;
+  std::ifstream json(dir / "r.json");
+  const nlohmann::json truth = nlohmann::json::parse(json).at("truth");
+  const nlohmann::json& own = truth.at("own_part_rms_per_diagonal");
+  ASSERT_EQ(own.size(), 2u);
+  // In place: each part within 5% of the diagonal of its own (body and handle are 20-30% apart).
+  for (const char* part : {"body", "handle"}) EXPECT_LT(own.at(part).get<double>(), 0.05) << part;
+  EXPECT_NEAR(truth.at("own_part_rms_mean_per_diagonal").get<double>(),
+              0.5 * (own.at("body").get<double>() + own.at("handle").get<double>()), 1e-12);
+
+  std::filesystem::create_directories(dir / "cubes");
+  for (const char* name : {"a", "b", "c"})
+    std::filesystem::copy_file(cube(), dir / "cubes" / (std::string(name) + ".obj"),
+                               std::filesystem::copy_options::overwrite_existing);
+  ASSERT_EQ(run("train " + path("cubes") + " --points 300 --out " + path("cube.prm")).exit_code, 0);
+  const Outcome partless =
+      run("register " + path("cube.prm") + " " + cube() + " --truth " + path("mugs/mug_003"));
+  EXPECT_EQ(partless.exit_code, 1) << partless.output;
+  EXPECT_NE(partless.output.find("the model has no parts"), std::string::npos) << partless.output;
+}
+
 TEST_F(Cli, RegisterWritesItsOutputsAndRefusesBadInput) {
   ASSERT_EQ(run("synth mug --out " + path("mugs") + " --instances 4 --seed 3").exit_code, 0);
   ASSERT_EQ(run("train " + path("mugs") + " --out " + path("mug.prm") + " --points 300").exit_code, 0);

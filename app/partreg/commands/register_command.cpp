@@ -1,6 +1,7 @@
 // `partreg register MODEL OBSERVED`: deform a category model onto an observed cloud or mesh.
 #include <algorithm>
 #include <cmath>
+#include <filesystem>
 #include <iostream>
 #include <memory>
 #include <sstream>
@@ -17,6 +18,7 @@
 #include "partreg/core/truth_errors.hpp"
 #include "partreg/eval/baselines.hpp"
 #include "partreg/io/cloud_io.hpp"
+#include "partreg/io/dataset.hpp"
 #include "partreg/io/frames_file.hpp"
 #include "partreg/io/mesh_io.hpp"
 #include "partreg/io/model_file.hpp"
@@ -92,15 +94,31 @@ nlohmann::json baseline_errors(const core::CategoryModel& model, const core::Poi
 // baselines on the same observation.
 nlohmann::json truth_errors(const core::CategoryModel& model, const core::Points& observed,
                             const core::RegistrationResult& result, const RegisterOptions& options) {
-  const core::Points truth = read_points_logged(options.truth_path, 20000, 2);
+  // A folder of part meshes is a truth with its own parts: each part is also scored against its own.
+  const bool has_parts = std::filesystem::is_directory(options.truth_path);
+  if (has_parts && model.part_names.empty())
+    throw InputError("--truth " + options.truth_path + " is a folder of part meshes but the model has no parts");
+  const core::TrainingInstance labelled =
+      has_parts ? io::read_part_folder(options.truth_path, model.part_names, {20000, 2}) : core::TrainingInstance{};
+  const core::Points truth = has_parts ? labelled.points : read_points_logged(options.truth_path, 20000, 2);
   const double diagonal = core::truth_diagonal(truth);
   const core::KdTree truth_tree(truth);
-  const core::TruthErrors errors =
-      core::measure_against_truth(result.deformed, result.part, model.part_names, truth_tree, diagonal);
+  const core::TruthErrors errors = core::measure_against_truth(result.deformed, result.part, model.part_names,
+                                                               truth_tree, diagonal, nullptr,
+                                                               has_parts ? &labelled.part : nullptr);
+  if (has_parts)
+    std::cerr << "read " << options.truth_path << ": " << truth.rows() << " points sampled from its "
+              << model.part_names.size() << " part meshes\n";
   std::cerr << core::enum_name(result.variant) << " against " << options.truth_path << ": symmetric RMS "
             << errors.symmetric_rms_per_diagonal << " of its diagonal; Eq. 5 " << errors.eq5
             << " (data units squared), " << errors.eq5_per_diagonal2 << " of the diagonal squared; Chamfer "
             << errors.chamfer << '\n';
+  if (errors.own_part_rms_mean_per_diagonal) {
+    std::cerr << "each part against its own: mean " << *errors.own_part_rms_mean_per_diagonal << " of the diagonal (";
+    for (const auto& [part, figure] : errors.own_part_rms_per_diagonal)
+      std::cerr << (part == errors.own_part_rms_per_diagonal.begin()->first ? "" : ", ") << part << ' ' << figure;
+    std::cerr << ")\n";
+  }
   nlohmann::json json = io::truth_errors_json(errors);
   json["file"] = options.truth_path;
   json["baselines"] = baseline_errors(model, observed, result, options, truth_tree, diagonal,
@@ -183,7 +201,8 @@ void add_register_command(CLI::App& app) {
   add_registration_flags(command, o->settings);
   add_threads_flag(command, o->threads);
   command->add_option("--truth", o->truth_path,
-                      "ground-truth instance (cloud or mesh, observed frame): report the errors against it");
+                      "ground-truth instance (cloud or mesh, or a folder of part meshes named as the model's "
+                      "parts; observed frame): report the errors against it (with parts: each part against its own)");
   command->add_option("--samples", o->mesh_samples, "points sampled from an observed mesh")
       ->capture_default_str()
       ->check(point_count_range());

@@ -164,6 +164,31 @@ Dataset read_dataset(const fs::path& folder, const DatasetOptions& options) {
   return dataset;
 }
 
+core::TrainingInstance read_part_folder(const fs::path& folder, const std::vector<std::string>& part_names,
+                                        const DatasetOptions& options) {
+  const std::vector<std::string> stems = part_stems(folder);
+  if (stems.empty()) throw InputError("folder " + folder.string() + " holds no part file");
+  std::vector<core::Mesh> parts;
+  for (const fs::path& file : sorted_entries(folder))
+    if (fs::is_regular_file(file)) parts.push_back(read_mesh(file));
+  core::TrainingInstance instance =
+      instance_from_parts(folder.filename().string(), parts, options, options.seed);
+  std::vector<int> index_of_stem;  // the folder's part order -> part_names' order
+  for (const std::string& stem : stems) {
+    const auto found = std::find(part_names.begin(), part_names.end(), stem);
+    if (found == part_names.end()) {
+      std::string names;
+      for (const std::string& name : part_names) names += (names.empty() ? "" : ", ") + name;
+      throw InputError("part file '" + stem + "' of " + folder.string() + " is not a part of the model (" +
+                       names + ")");
+    }
+    index_of_stem.push_back(static_cast<int>(found - part_names.begin()));
+  }
+  for (int& part : instance.part) part = index_of_stem[static_cast<std::size_t>(part)];
+  for (int& part : instance.mesh_vertex_part) part = index_of_stem[static_cast<std::size_t>(part)];
+  return instance;
+}
+
 void apply_face_labels(Dataset& dataset, const std::string& instance,
                        const std::vector<std::string>& part_names, const Eigen::VectorXi& face_labels,
                        const DatasetOptions& options) {

@@ -95,6 +95,10 @@ nlohmann::json truth_errors_json(const core::TruthErrors& errors) {
                          {"part_eq5_per_diagonal2", errors.part_eq5_per_diagonal2}};
   if (errors.correspondence_per_diagonal)
     json["correspondence_per_diagonal"] = *errors.correspondence_per_diagonal;
+  if (errors.own_part_rms_mean_per_diagonal) {
+    json["own_part_rms_per_diagonal"] = errors.own_part_rms_per_diagonal;
+    json["own_part_rms_mean_per_diagonal"] = *errors.own_part_rms_mean_per_diagonal;
+  }
   return json;
 }
 

@@ -33,6 +33,14 @@ struct Dataset {
 /// instance, unreadable files, or part folders whose part names differ between instances.
 Dataset read_dataset(const std::filesystem::path& folder, const DatasetOptions& options = {});
 
+/// One instance from a folder of part meshes (the layout of one kettle: <part>.<ext>, the stem naming the
+/// part): an area-uniform sample of `options.points_per_instance` points with a part per point, indexing
+/// `part_names`, which must name every file's stem (InputError naming the stranger otherwise, or for a folder
+/// without part files).
+core::TrainingInstance read_part_folder(const std::filesystem::path& folder,
+                                        const std::vector<std::string>& part_names,
+                                        const DatasetOptions& options = {});
+
 /// Gives one instance parts from per-face labels of its mesh (a labels file made for it): the mesh is split
 /// by label and re-sampled like a part-folder instance. Throws InputError when the face count differs.
 void apply_face_labels(Dataset& dataset, const std::string& instance,
