@@ -270,14 +270,29 @@ void header_row(std::ostringstream& out, const std::string& first, const std::ve
   out << "\n";
 }
 
+// The parts a category's rows have a per-part figure for (`figures` names the TruthErrors map), first seen
+// first.
+std::vector<std::string> parts_in(const std::vector<EvalRow>& rows, const std::string& category,
+                                  std::map<std::string, double> core::TruthErrors::*figures) {
+  std::vector<std::string> parts;
+  for (const EvalRow& r : rows)
+    if (r.category == category)
+      for (const auto& entry : r.errors.*figures)
+        if (std::find(parts.begin(), parts.end(), entry.first) == parts.end()) parts.push_back(entry.first);
+  return parts;
+}
+
+// A part's figure in a per-part map; NaN (left out of means) where the row has none.
+double part_figure(const std::map<std::string, double>& figures, const std::string& part) {
+  const auto found = figures.find(part);
+  return found == figures.end() ? std::nan("") : found->second;
+}
+
 void part_tables(std::ostringstream& out, const std::vector<EvalRow>& rows) {
   const std::vector<std::string> variants = variants_of(rows);
   for (const std::string& category : categories_of(rows)) {
-    std::vector<std::string> parts;
-    for (const EvalRow& r : rows)
-      if (r.category == category)
-        for (const auto& entry : r.errors.part_eq5_per_diagonal2)
-          if (std::find(parts.begin(), parts.end(), entry.first) == parts.end()) parts.push_back(entry.first);
+    const std::vector<std::string> parts =
+        parts_in(rows, category, &core::TruthErrors::part_eq5_per_diagonal2);
     if (parts.size() < 2) continue;
     for (bool partial : {false, true}) {
       out << "\nEq. 5 per part x 1e4, " << category << ", " << (partial ? "partial views" : "full views")
@@ -292,10 +307,7 @@ void part_tables(std::ostringstream& out, const std::vector<EvalRow>& rows) {
                 return r.category == category && r.variant == variant && is_partial(r) == partial &&
                        r.perturbation == Perturbation::none;
               },
-              [&](const EvalRow& r) {
-                const auto found = r.errors.part_eq5_per_diagonal2.find(part);
-                return found == r.errors.part_eq5_per_diagonal2.end() ? std::nan("") : found->second;
-              });
+              [&](const EvalRow& r) { return part_figure(r.errors.part_eq5_per_diagonal2, part); });
           out << ' ' << cell(mean) << " |";
         }
         out << "\n";
@@ -309,11 +321,8 @@ void part_tables(std::ostringstream& out, const std::vector<EvalRow>& rows) {
 void own_part_tables(std::ostringstream& out, const std::vector<EvalRow>& rows) {
   const std::vector<std::string> variants = variants_of(rows);
   for (const std::string& category : categories_of(rows)) {
-    std::vector<std::string> parts;
-    for (const EvalRow& r : rows)
-      if (r.category == category)
-        for (const auto& entry : r.errors.own_part_rms_per_diagonal)
-          if (std::find(parts.begin(), parts.end(), entry.first) == parts.end()) parts.push_back(entry.first);
+    const std::vector<std::string> parts =
+        parts_in(rows, category, &core::TruthErrors::own_part_rms_per_diagonal);
     if (parts.empty()) continue;
     for (bool partial : {false, true}) {
       const auto keep = [&](const std::string& variant) {
@@ -329,19 +338,23 @@ void own_part_tables(std::ostringstream& out, const std::vector<EvalRow>& rows) 
       for (const std::string& part : parts) {
         out << "| " << part << " |";
         for (const std::string& variant : variants)
-          out << ' ' << cell(mean_of(rows, keep(variant), [&](const EvalRow& r) {
-                                const auto found = r.errors.own_part_rms_per_diagonal.find(part);
-                                return found == r.errors.own_part_rms_per_diagonal.end() ? std::nan("")
-                                                                                       : found->second;
-                              }), 100)
+          out << ' '
+              << cell(mean_of(rows, keep(variant),
+                              [&](const EvalRow& r) {
+                                return part_figure(r.errors.own_part_rms_per_diagonal, part);
+                              }),
+                      100)
               << " |";
         out << "\n";
       }
       out << "| mean over parts |";
       for (const std::string& variant : variants)
-        out << ' ' << cell(mean_of(rows, keep(variant), [](const EvalRow& r) {
+        out << ' '
+            << cell(mean_of(rows, keep(variant),
+                            [](const EvalRow& r) {
                               return r.errors.own_part_rms_mean_per_diagonal.value_or(std::nan(""));
-                            }), 100)
+                            }),
+                    100)
             << " |";
       out << "\n";
     }
