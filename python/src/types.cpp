@@ -192,7 +192,7 @@ void bind_registration_result(py::module_& m) {
       .def_readonly("hypotheses", &core::SpaceFit::hypotheses, "starting poses the search tried")
       .def_readonly("score", &core::SpaceFit::score, "the winner's selection score (setting score)")
       .def_readonly("runner_up_score", &core::SpaceFit::runner_up_score,
-                    "the best other finalist's score; inf when there was none (near score: an ambiguous pose)");
+                    "the best other finalist's score; inf when there was none (near score: ambiguous)");
   py::class_<core::HistoryStep>(m, "HistoryStep", "The state after one outer step of one space.")
       .def_readonly("space", &core::HistoryStep::space)
       .def_property_readonly("latent", [](const core::HistoryStep& s) { return copy_vector(s.latent); })

@@ -127,8 +127,8 @@ TEST_F(Cli, TrainTakesSeveralLabelsFilesAndRefusesOnesThatDisagree) {
     return path(file);
   };
   const std::string a = labels("a.json", "a.obj", "lid"), b = labels("b.json", "b.obj", "lid");
-  const Outcome train = run("train " + path("cubes") + " --labels " + a + " --labels " + b + " --labels " + a +
-                            " --points 300 --out " + path("m.prm"));
+  const Outcome train = run("train " + path("cubes") + " --labels " + a + " --labels " + b + " --labels " +
+                            a + " --points 300 --out " + path("m.prm"));
   ASSERT_EQ(train.exit_code, 0) << train.output;
   EXPECT_NE(train.output.find("canonical: a"), std::string::npos) << train.output;
   EXPECT_NE(train.output.find("label propagation onto b:"), std::string::npos) << train.output;
@@ -160,8 +160,9 @@ TEST_F(Cli, TrainRefusesPartFoldersThatDisagreeAndWritesNoModel) {
 TEST_F(Cli, RegisterScoresEachPartAgainstItsOwnWhenTheTruthHasParts) {
   ASSERT_EQ(run("synth mug --out " + path("mugs") + " --instances 4 --seed 3").exit_code, 0);
   ASSERT_EQ(run("train " + path("mugs") + " --out " + path("mug.prm") + " --points 300").exit_code, 0);
-  const Outcome good = run("register " + path("mug.prm") + " " + path("mugs/ground_truth/mug_003.ply") +
-                           " --variant coupled --json " + path("r.json") + " --truth " + path("mugs/mug_003"));
+  const Outcome good =
+      run("register " + path("mug.prm") + " " + path("mugs/ground_truth/mug_003.ply") +
+          " --variant coupled --json " + path("r.json") + " --truth " + path("mugs/mug_003"));
   ASSERT_EQ(good.exit_code, 0) << good.output;
   EXPECT_NE(good.output.find("each part against its own: mean "), std::string::npos) << good.output;
   std::ifstream json(dir / "r.json");

@@ -80,7 +80,7 @@ TEST(TruthErrors, OwnPartFigureSeesPartsSwappedThatTheWholeTruthCannot) {
 }
 
 TEST(TruthErrors, OwnPartFigureLeavesOutAPartTheTruthLacksAndRefusesMismatchedLabels) {
-  const Points truth = (Points(3, 3) << 0, 0, 0, 1, 0, 0, 3, 0, 0).finished();  // D = 3
+  const Points truth = (Points(3, 3) << 0, 0, 0, 1, 0, 0, 3, 0, 0).finished();    // D = 3
   const Eigen::VectorXi truth_part = (Eigen::VectorXi(3) << 0, 0, 1).finished();  // no spout
   const Points deformed = (Points(3, 3) << 0, 0, 0, 1, 0, 0, 3, 0, 1.5).finished();
   const Eigen::VectorXi part = (Eigen::VectorXi(3) << 0, 2, 1).finished();
@@ -91,9 +91,9 @@ TEST(TruthErrors, OwnPartFigureLeavesOutAPartTheTruthLacksAndRefusesMismatchedLa
   // body: (0,0,0) on its own; the true (1,0,0) is 1 from it.
   EXPECT_DOUBLE_EQ(e.own_part_rms_per_diagonal.at("body"), 0.5 * (0.0 + std::sqrt(0.5)) / 3.0);
   const Eigen::VectorXi short_labels = (Eigen::VectorXi(2) << 0, 1).finished();
-  EXPECT_THROW(measure_against_truth(deformed, part, {"body", "handle", "spout"}, truth, 3.0, nullptr,
-                                     &short_labels),
-               InputError);
+  EXPECT_THROW(
+      measure_against_truth(deformed, part, {"body", "handle", "spout"}, truth, 3.0, nullptr, &short_labels),
+      InputError);
 }
 
 }  // namespace

@@ -59,10 +59,10 @@ TEST(EvalCommand, QuickProtocolOnASyntheticCategoryWritesRowsTablesAndPlotsThatA
     ASSERT_EQ(row.errors.part_eq5_per_diagonal2.size(), 2u);  // body, handle
     // The synthetic mugs have part folders: each registration is also scored part against own part (the
     // baselines are not: a template's parts are not the canonical's).
-    const bool registration = row.variant == "holistic" || row.variant == "partwise" || row.variant == "hol+part";
+    const bool registration =
+        row.variant == "holistic" || row.variant == "partwise" || row.variant == "hol+part";
     ASSERT_EQ(row.errors.own_part_rms_per_diagonal.size(), registration ? 2u : 0u) << row.variant;
-    if (registration)
-      EXPECT_TRUE(std::isfinite(*row.errors.own_part_rms_mean_per_diagonal));
+    if (registration) EXPECT_TRUE(std::isfinite(*row.errors.own_part_rms_mean_per_diagonal));
   }
   // Every observation has its four baselines; the oracle (which may pick the canonical) is never worse than
   // the rigid canonical on the same observation, and the true shape (the tested mug itself at its true pose,

@@ -153,7 +153,8 @@ TEST(EvalReport, SeamGapsRoundTripAndShowForThePartVariantsOnly) {
   std::string format, header, line;
   std::getline(in, format), std::getline(in, header), std::getline(in, line);
   const std::string format3_header = header.substr(0, header.rfind(",own_part_rms_mean"));
-  const std::string format3_line = line.substr(0, line.size() - 2);  // holistic ends in 2 empty own-part fields
+  const std::string format3_line =
+      line.substr(0, line.size() - 2);  // holistic ends in 2 empty own-part fields
   std::ofstream(dir / "v2.csv") << "# partreg evaluation rows, format 2\n"
                                 << header.substr(0, header.rfind(",seam_gap_mean")) << "\n"
                                 << format3_line.substr(0, format3_line.size() - 2) << "\n";

@@ -97,15 +97,17 @@ nlohmann::json truth_errors(const core::CategoryModel& model, const core::Points
   // A folder of part meshes is a truth with its own parts: each part is also scored against its own.
   const bool has_parts = std::filesystem::is_directory(options.truth_path);
   if (has_parts && model.part_names.empty())
-    throw InputError("--truth " + options.truth_path + " is a folder of part meshes but the model has no parts");
+    throw InputError("--truth " + options.truth_path +
+                     " is a folder of part meshes but the model has no parts");
   const core::TrainingInstance labelled =
-      has_parts ? io::read_part_folder(options.truth_path, model.part_names, {20000, 2}) : core::TrainingInstance{};
+      has_parts ? io::read_part_folder(options.truth_path, model.part_names, {20000, 2})
+                : core::TrainingInstance{};
   const core::Points truth = has_parts ? labelled.points : read_points_logged(options.truth_path, 20000, 2);
   const double diagonal = core::truth_diagonal(truth);
   const core::KdTree truth_tree(truth);
-  const core::TruthErrors errors = core::measure_against_truth(result.deformed, result.part, model.part_names,
-                                                               truth_tree, diagonal, nullptr,
-                                                               has_parts ? &labelled.part : nullptr);
+  const core::TruthErrors errors =
+      core::measure_against_truth(result.deformed, result.part, model.part_names, truth_tree, diagonal,
+                                  nullptr, has_parts ? &labelled.part : nullptr);
   if (has_parts)
     std::cerr << "read " << options.truth_path << ": " << truth.rows() << " points sampled from its "
               << model.part_names.size() << " part meshes\n";
@@ -114,9 +116,11 @@ nlohmann::json truth_errors(const core::CategoryModel& model, const core::Points
             << " (data units squared), " << errors.eq5_per_diagonal2 << " of the diagonal squared; Chamfer "
             << errors.chamfer << '\n';
   if (errors.own_part_rms_mean_per_diagonal) {
-    std::cerr << "each part against its own: mean " << *errors.own_part_rms_mean_per_diagonal << " of the diagonal (";
+    std::cerr << "each part against its own: mean " << *errors.own_part_rms_mean_per_diagonal
+              << " of the diagonal (";
     for (const auto& [part, figure] : errors.own_part_rms_per_diagonal)
-      std::cerr << (part == errors.own_part_rms_per_diagonal.begin()->first ? "" : ", ") << part << ' ' << figure;
+      std::cerr << (part == errors.own_part_rms_per_diagonal.begin()->first ? "" : ", ") << part << ' '
+                << figure;
     std::cerr << ")\n";
   }
   nlohmann::json json = io::truth_errors_json(errors);
@@ -200,9 +204,10 @@ void add_register_command(CLI::App& app) {
   command->add_option("--frames-out", o->frames_out, "where the transferred frames go");
   add_registration_flags(command, o->settings);
   add_threads_flag(command, o->threads);
-  command->add_option("--truth", o->truth_path,
-                      "ground-truth instance (cloud or mesh, or a folder of part meshes named as the model's "
-                      "parts; observed frame): report the errors against it (with parts: each part against its own)");
+  command->add_option(
+      "--truth", o->truth_path,
+      "ground-truth instance (cloud or mesh, or a folder of part meshes named as the model's "
+      "parts; observed frame): report the errors against it (with parts: each part against its own)");
   command->add_option("--samples", o->mesh_samples, "points sampled from an observed mesh")
       ->capture_default_str()
       ->check(point_count_range());

@@ -200,11 +200,12 @@ void run_job(const EvalInput& input, const EvalSettings& settings, const FoldCon
   for (std::size_t v = 0; v < variants.size(); ++v) {
     registration.variant = variants[v];
     results.push_back(core::register_observation(model, perturbed.points, registration));
-    rows[v] = make_row(core::enum_name(variants[v]),
-                       core::measure_against_truth(results[v].deformed, results[v].part, model.part_names,
-                                                   truth, test.diagonal, truth_of_row ? &*truth_of_row : nullptr,
-                                                   truth_has_parts ? &instance.part : nullptr),
-                       results[v].seconds);
+    rows[v] =
+        make_row(core::enum_name(variants[v]),
+                 core::measure_against_truth(results[v].deformed, results[v].part, model.part_names, truth,
+                                             test.diagonal, truth_of_row ? &*truth_of_row : nullptr,
+                                             truth_has_parts ? &instance.part : nullptr),
+                 results[v].seconds);
     if (variants[v] != core::Variant::holistic) rows[v].seam = core::seam_gap(model, results[v]);
   }
   if (!settings.baselines) return;
