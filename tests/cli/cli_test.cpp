@@ -144,6 +144,19 @@ TEST_F(Cli, TrainTakesSeveralLabelsFilesAndRefusesOnesThatDisagree) {
   EXPECT_NE(other.output.find("names other parts"), std::string::npos) << other.output;
   EXPECT_FALSE(std::filesystem::exists(dir / "twice.prm"));
   EXPECT_FALSE(std::filesystem::exists(dir / "other.prm"));
+
+  // Files after one --labels, as a shell glob gives them; --canonical picks another labelled instance, and
+  // must name one.
+  const Outcome chosen = run("train " + path("cubes") + " --labels " + a + " " + b + " --canonical b" +
+                             " --points 300 --out " + path("b.prm"));
+  ASSERT_EQ(chosen.exit_code, 0) << chosen.output;
+  EXPECT_NE(chosen.output.find("canonical: b"), std::string::npos) << chosen.output;
+  EXPECT_NE(chosen.output.find("label propagation onto a:"), std::string::npos) << chosen.output;
+  const Outcome unlabelled = run("train " + path("cubes") + " --labels " + a + " " + b + " --canonical c" +
+                                 " --out " + path("c.prm"));
+  EXPECT_EQ(unlabelled.exit_code, 2) << unlabelled.output;
+  EXPECT_NE(unlabelled.output.find("none of the labelled instances"), std::string::npos) << unlabelled.output;
+  EXPECT_FALSE(std::filesystem::exists(dir / "c.prm"));
 }
 
 TEST_F(Cli, TrainRefusesPartFoldersThatDisagreeAndWritesNoModel) {

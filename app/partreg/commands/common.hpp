@@ -42,8 +42,9 @@ using io::apply_labels_files;
 
 /// --labels of train and eval (io::apply_labels_files): one or more labels files.
 inline constexpr const char* kLabelsHelp =
-    "labels files: the first gives the canonical its parts, each further one its own instance (which trains "
-    "on its own parts and, in eval, is scored against them)";
+    "labels files, one per labelled instance (--labels a.json b.json, or repeated): each gives its instance "
+    "its parts, which it trains on and, in eval, is scored against; the first file's instance is the "
+    "canonical unless --canonical names another of them";
 
 /// "1280x960" -> {1280, 960}; UsageError naming `option` for anything else or a side below 1 pixel.
 std::pair<int, int> parse_size(const std::string& text, const std::string& option);

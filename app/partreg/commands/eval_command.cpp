@@ -215,7 +215,9 @@ void add_eval_command(CLI::App& app) {
   command->add_option("--out", o->out_path, "new folder: results.csv, tables.md, plots, run.json")
       ->required();
   command->add_option("--labels", o->labels_paths, kLabelsHelp);
-  command->add_option("--canonical", o->canonical, "instance the labels belong to (default: from the file)");
+  command->add_option("--canonical", o->canonical,
+                      "the canonical: with one labels file the instance it was made for (default: from the "
+                      "file); with several, one of their instances (default: the first file's)");
   command->add_option("--protocol", o->protocol, "paper | quick")->capture_default_str();
   command->add_option("--variants", o->variants, core::enum_choices<core::Variant>(", "))
       ->delimiter(',')

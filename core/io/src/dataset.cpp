@@ -241,24 +241,29 @@ std::string apply_labels_file(Dataset& dataset, const std::filesystem::path& lab
 std::string apply_labels_files(Dataset& dataset, const std::vector<std::filesystem::path>& labels_paths,
                                const std::string& canonical, const DatasetOptions& options) {
   if (labels_paths.empty()) return canonical;
-  const std::string first = apply_labels_file(dataset, labels_paths.front(), canonical, options);
-  const std::vector<std::string> names = dataset.part_names;
-  std::set<std::filesystem::path> seen = {std::filesystem::weakly_canonical(labels_paths.front())};
-  std::map<std::string, std::filesystem::path> labelled = {{first, labels_paths.front()}};
-  for (std::size_t i = 1; i < labels_paths.size(); ++i) {
-    const std::filesystem::path& path = labels_paths[i];
+  if (labels_paths.size() == 1) return apply_labels_file(dataset, labels_paths.front(), canonical, options);
+  // Several files: each labels the instance its `source` names; the canonical is `canonical` or the first's.
+  std::vector<std::string> names;
+  std::set<std::filesystem::path> seen;
+  std::map<std::string, std::filesystem::path> labelled;
+  std::string first;
+  for (const std::filesystem::path& path : labels_paths) {
     if (!seen.insert(std::filesystem::weakly_canonical(path)).second) continue;
     const PartLabels labels = read_labels_file(path);
     const std::string instance = std::filesystem::path(labels.source).stem().string();
+    if (names.empty()) names = labels.names, first = instance;
     if (labels.names != names)
       throw InputError("labels file " + path.string() + " names other parts than " +
-                       labels_paths.front().string() + " (every labels file must name the same parts)");
+                       labelled[first].string() + " (every labels file must name the same parts)");
     if (!labelled.emplace(instance, path).second)
       throw UsageError("labels files " + labelled[instance].string() + " and " + path.string() +
                        " both label '" + instance + "'");
     apply_labels_file(dataset, path, instance, options);
   }
-  return first;
+  if (canonical.empty()) return first;
+  if (labelled.count(canonical) == 0)
+    throw UsageError("--canonical " + canonical + " is none of the labelled instances");
+  return canonical;
 }
 
 }  // namespace partreg::io

@@ -52,11 +52,11 @@ void apply_face_labels(Dataset& dataset, const std::string& instance,
 std::string apply_labels_file(Dataset& dataset, const std::filesystem::path& labels_path,
                               const std::string& canonical, const DatasetOptions& options = {});
 
-/// Several labels files: the first gives the canonical its parts (as apply_labels_file, `canonical` naming
-/// its instance where the file does not), each further one its own instance, which then trains on its own
-/// parts and is scored against them (eval's own-part figure). Returns the canonical's name. A file listed
-/// twice counts once; UsageError for two files naming one instance, InputError for part names that differ
-/// from the first file's.
+/// Several labels files, each giving the instance its `source` names its parts (that instance then trains on
+/// its own parts and is scored against them in eval); the canonical is `canonical`, which must be one of them,
+/// or the first file's. One file: apply_labels_file (`canonical` may name the instance it was made for).
+/// Returns the canonical's name. A file listed twice counts once; UsageError for two files naming one
+/// instance or a `canonical` none labels, InputError for part names that differ from the first file's.
 std::string apply_labels_files(Dataset& dataset, const std::vector<std::filesystem::path>& labels_paths,
                                const std::string& canonical, const DatasetOptions& options = {});
 
