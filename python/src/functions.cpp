@@ -4,6 +4,7 @@
 #include <pybind11/stl.h>
 #include <pybind11/stl/filesystem.h>
 #include <optional>
+#include <variant>
 
 #include "arrays.hpp"
 #include "bindings.hpp"
@@ -93,7 +94,8 @@ void bind_training(py::module_& m) {
   // The docstring lists every keyword from the table, so help(partreg.train) cannot go out of date.
   const std::string train_doc =
       "Trains a category from a folder of pose-aligned instances, as `partreg train`. labels: a labels file "
-      "giving the canonical its parts; canonical: the instance to use as canonical (default: automatic); "
+      "giving the canonical its parts, or a list of them (as train --labels: each labels its own instance, "
+      "the first's is the canonical); canonical: the instance to use as canonical (default: automatic); "
       "samples and seed: surface samples per mesh instance and their seed (--samples, --seed); threads: as "
       "--threads, all counted, 0 = all cores. Keyword arguments are the training options of `partreg train` "
       "('-' as '_', lambda_ for --lambda, same defaults; lengths normalised: the canonical's diagonal is 1). "
@@ -102,16 +104,21 @@ void bind_training(py::module_& m) {
       training_keywords_doc();
   m.def(
       "train",
-      [](const Path& folder, std::optional<Path> labels, std::optional<std::string> canonical, int samples,
-         std::uint64_t seed, int threads, const py::kwargs& keywords) {
+      [](const Path& folder, std::optional<std::variant<Path, std::vector<Path>>> labels,
+         std::optional<std::string> canonical, int samples, std::uint64_t seed, int threads,
+         const py::kwargs& keywords) {
         core::TrainingSettings settings = training_settings(keywords);
         settings.canonical = canonical;
         py::gil_scoped_release release;
         const core::ThreadBudget budget(thread_count(threads));
         const io::DatasetOptions options{samples, seed};
         io::Dataset read = io::read_dataset(folder, options);
-        if (labels)
-          settings.canonical = io::apply_labels_file(read, *labels, canonical.value_or(""), options);
+        if (labels) {
+          const std::vector<Path> files = std::holds_alternative<Path>(*labels)
+                                              ? std::vector<Path>{std::get<Path>(*labels)}
+                                              : std::get<std::vector<Path>>(*labels);
+          settings.canonical = io::apply_labels_files(read, files, canonical.value_or(""), options);
+        }
         return std::make_shared<core::CategoryModel>(
             core::train_category(read.name, read.instances, read.part_names, settings));
       },

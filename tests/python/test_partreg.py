@@ -291,6 +291,17 @@ def test_train_equals_the_command_line(partreg, model, data_dir, source_dir):
         partreg.train(data_dir / "mugs", seam_band=-0.1)
 
 
+def test_train_takes_several_labels_files(partreg, data_dir, source_dir):
+    # As train --labels: each file labels its own mug; --canonical picks one of them.
+    folder = source_dir / "assets" / "labels"
+    files = [folder / "1a97f3c83016abca21d0de04f408950f.labels.json", folder / "6aec84952a5ffcf33f60d03e1cb068dc.labels.json"]
+    trained = partreg.train(data_dir / "mugs", labels=files, canonical="6aec84952a5ffcf33f60d03e1cb068dc", points=300,
+                            samples=1000)
+    assert trained.canonical_name == "6aec84952a5ffcf33f60d03e1cb068dc" and trained.part_names == ["body", "handle"]
+    with pytest.raises(partreg.UsageError, match="none of the labelled instances"):
+        partreg.train(data_dir / "mugs", labels=files, canonical="5c48d471200d2bf16e8a121e6886e18d")
+
+
 def test_training_keywords_are_the_command_lines(partreg, cli_dir, data_dir):
     # The keywords come from the one table of training options: the command line's names ('-' as '_',
     # lambda_ for --lambda) and defaults, as `train --json` recorded them (points aside: the CLI asked for 500).
