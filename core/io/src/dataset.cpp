@@ -262,7 +262,7 @@ std::string apply_labels_files(Dataset& dataset, const std::vector<std::filesyst
   }
   if (canonical.empty()) return first;
   if (labelled.count(canonical) == 0)
-    throw UsageError("--canonical " + canonical + " is none of the labelled instances");
+    throw UsageError("the canonical '" + canonical + "' is none of the labelled instances");
   return canonical;
 }
 
