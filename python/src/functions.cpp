@@ -20,6 +20,7 @@
 #include "partreg/io/geometry_io.hpp"
 #include "partreg/io/mesh_io.hpp"
 #include "partreg/io/model_file.hpp"
+#include "partreg/io/result_file.hpp"
 #include "setting_keywords.hpp"
 
 namespace partreg::python {
@@ -303,20 +304,8 @@ void bind_evaluation(py::module_& m) {
             core::measure_against_truth(d, p, part_names, t, diagonal ? *diagonal : core::truth_diagonal(t),
                                         nullptr, tp ? &*tp : nullptr);
         py::gil_scoped_acquire acquire;
-        py::dict figures;
-        figures["diagonal"] = e.diagonal;
-        figures["eq5"] = e.eq5;
-        figures["eq5_per_diagonal2"] = e.eq5_per_diagonal2;
-        figures["reverse_eq5"] = e.reverse_eq5;
-        figures["symmetric_rms_per_diagonal"] = e.symmetric_rms_per_diagonal;
-        figures["chamfer"] = e.chamfer;
-        figures["chamfer_per_diagonal"] = e.chamfer_per_diagonal;
-        figures["part_eq5_per_diagonal2"] = e.part_eq5_per_diagonal2;
-        if (e.own_part_rms_mean_per_diagonal) {
-          figures["own_part_rms_per_diagonal"] = e.own_part_rms_per_diagonal;
-          figures["own_part_rms_mean_per_diagonal"] = *e.own_part_rms_mean_per_diagonal;
-        }
-        return figures;
+        // The keys and values of the result JSON's truth figures (io::truth_errors_json): one list of them.
+        return py::module_::import("json").attr("loads")(io::truth_errors_json(e).dump());
       },
       py::arg("deformed"), py::arg("part"), py::arg("part_names"), py::arg("truth"),
       py::arg("diagonal") = py::none(), py::arg("truth_part") = py::none(),

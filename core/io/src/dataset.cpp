@@ -111,6 +111,13 @@ std::vector<std::string> part_stems(const fs::path& folder) {
   return names;
 }
 
+// The part meshes of one instance folder, in file-name order (as part_stems names them).
+std::vector<core::Mesh> part_meshes(const fs::path& folder) {
+  std::vector<core::Mesh> parts;
+  for (const fs::path& file : sorted_entries(folder)) parts.push_back(read_mesh(file));
+  return parts;
+}
+
 Dataset read_part_folders(const fs::path& folder, const std::vector<fs::path>& entries,
                           const DatasetOptions& options) {
   Dataset dataset;
@@ -125,10 +132,8 @@ Dataset read_part_folders(const fs::path& folder, const std::vector<fs::path>& e
     if (part_stems(entries[i]) != dataset.part_names)
       throw InputError("instance folder " + entries[i].string() + " has parts that differ from those of " +
                        entries.front().string() + " (every instance needs the same part files)");
-    std::vector<core::Mesh> parts;
-    for (const fs::path& file : sorted_entries(entries[i])) parts.push_back(read_mesh(file));
     dataset.instances.push_back(
-        instance_from_parts(entries[i].filename().string(), parts, options, options.seed + i));
+        instance_from_parts(entries[i].filename().string(), part_meshes(entries[i]), options, options.seed + i));
   }
   return dataset;
 }
@@ -168,11 +173,8 @@ core::TrainingInstance read_part_folder(const fs::path& folder, const std::vecto
                                         const DatasetOptions& options) {
   const std::vector<std::string> stems = part_stems(folder);
   if (stems.empty()) throw InputError("folder " + folder.string() + " holds no part file");
-  std::vector<core::Mesh> parts;
-  for (const fs::path& file : sorted_entries(folder))
-    if (fs::is_regular_file(file)) parts.push_back(read_mesh(file));
   core::TrainingInstance instance =
-      instance_from_parts(folder.filename().string(), parts, options, options.seed);
+      instance_from_parts(folder.filename().string(), part_meshes(folder), options, options.seed);
   std::vector<int> index_of_stem;  // the folder's part order -> part_names' order
   for (const std::string& stem : stems) {
     const auto found = std::find(part_names.begin(), part_names.end(), stem);
@@ -216,16 +218,20 @@ void apply_face_labels(Dataset& dataset, const std::string& instance,
 }
 
 // A labels file made for one instance's mesh gives that instance (the canonical) its parts.
-std::string apply_labels_file(Dataset& dataset, const std::filesystem::path& labels_path,
-                              const std::string& canonical, const DatasetOptions& options) {
+namespace {
+
+// Labels files are for datasets without part files: refused before any file is read.
+void refuse_part_folders(const Dataset& dataset) {
   if (dataset.part_folders)
     throw UsageError("dataset " + dataset.name + " has part files already; --labels is for datasets without");
-  const PartLabels labels = read_labels_file(labels_path);
-  const std::string instance =
-      canonical.empty() ? std::filesystem::path(labels.source).stem().string() : canonical;
+}
+
+// Gives `instance` the labels read from `labels_path` (its faces' or its points').
+void apply_labels(Dataset& dataset, const PartLabels& labels, const std::filesystem::path& labels_path,
+                  const std::string& instance, const DatasetOptions& options) {
   if (labels.target == PartLabels::Target::faces) {
     apply_face_labels(dataset, instance, labels.names, labels.labels, options);
-    return instance;
+    return;
   }
   auto found =
       std::find_if(dataset.instances.begin(), dataset.instances.end(),
@@ -235,6 +241,17 @@ std::string apply_labels_file(Dataset& dataset, const std::filesystem::path& lab
   check_labels_match(labels, static_cast<std::size_t>(found->points.rows()), "points of " + instance);
   found->part = labels.labels;
   dataset.part_names = labels.names;
+}
+
+}  // namespace
+
+std::string apply_labels_file(Dataset& dataset, const std::filesystem::path& labels_path,
+                              const std::string& canonical, const DatasetOptions& options) {
+  refuse_part_folders(dataset);
+  const PartLabels labels = read_labels_file(labels_path);
+  const std::string instance =
+      canonical.empty() ? std::filesystem::path(labels.source).stem().string() : canonical;
+  apply_labels(dataset, labels, labels_path, instance, options);
   return instance;
 }
 
@@ -242,6 +259,7 @@ std::string apply_labels_files(Dataset& dataset, const std::vector<std::filesyst
                                const std::string& canonical, const DatasetOptions& options) {
   if (labels_paths.empty()) return canonical;
   if (labels_paths.size() == 1) return apply_labels_file(dataset, labels_paths.front(), canonical, options);
+  refuse_part_folders(dataset);
   // Several files: each labels the instance its `source` names; the canonical is `canonical` or the first's.
   std::vector<std::string> names;
   std::set<std::filesystem::path> seen;
@@ -258,7 +276,7 @@ std::string apply_labels_files(Dataset& dataset, const std::vector<std::filesyst
     if (!labelled.emplace(instance, path).second)
       throw UsageError("labels files " + labelled[instance].string() + " and " + path.string() +
                        " both label '" + instance + "'");
-    apply_labels_file(dataset, path, instance, options);
+    apply_labels(dataset, labels, path, instance, options);
   }
   if (canonical.empty()) return first;
   if (labelled.count(canonical) == 0)
