@@ -11,6 +11,7 @@
 #include "partreg/core/synthetic.hpp"
 #include "partreg/core/training.hpp"
 #include "partreg/core/truth_errors.hpp"
+#include "mixture_fit.hpp"
 #include "support/test_shapes.hpp"
 
 namespace partreg::core {
@@ -280,6 +281,44 @@ TEST(Registration, ANoisyCloudIsFittedInAGaussianMixture) {
   EXPECT_GT(clean.mixture.noise, 0.0);
   EXPECT_LT(clean.mixture.noise, always.objective.mixture_noise);
   EXPECT_EQ(clean.mixture.sigma, 0.0);
+}
+
+// The prior's weight in a mixture follows the noise's variance from the noise where the mixture starts
+// (mixture_fit.hpp): the data term is a mean squared distance, so the weight that keeps the prior's share of
+// the posterior grows as sigma^2.
+TEST(Registration, ThePriorGrowsWithTheNoisesVarianceInAMixture) {
+  ObjectiveSettings objective;
+  objective.prior_weight = 2e-5;
+  objective.mixture_noise = 0.03;
+  EXPECT_EQ(detail::noisy_prior_weight(0.01, objective), 2e-5);  // below the limit: as set
+  EXPECT_EQ(detail::noisy_prior_weight(0.03, objective), 2e-5);
+  EXPECT_NEAR(detail::noisy_prior_weight(0.09, objective), 9 * 2e-5, 1e-12);
+  objective.mixture_noise = 0.0;  // a mixture always: no noise to start from, the weight as set
+  EXPECT_EQ(detail::noisy_prior_weight(0.09, objective), 2e-5);
+}
+
+// Partwise fits each part alone from the category frame and weighs its prior by partwise_prior_weight; the
+// other variants' spaces by prior_weight. An overwhelming weight pins a space's latent at the mean.
+TEST(Registration, PartwiseWeighsItsPartsPriorsByItsOwnSetting) {
+  const Points observed = transform(setup().held_out.points, known_pose());
+  const auto largest_part_latent = [&](const RegistrationSettings& settings) {
+    const RegistrationResult result = register_observation(setup().model, observed, settings);
+    double largest = 0.0;
+    for (const SpaceFit& fit : result.fits) largest = std::max(largest, fit.latent.cwiseAbs().maxCoeff());
+    return largest;
+  };
+  RegistrationSettings partwise;
+  partwise.variant = Variant::partwise;
+  partwise.refinement.enabled = false;
+  const double free_latent = largest_part_latent(partwise);
+  RegistrationSettings pinned = partwise;
+  pinned.objective.partwise_prior_weight = 1e6;
+  RegistrationSettings other_prior = partwise;
+  other_prior.objective.prior_weight = 1e6;
+  // The held-out mug is not the mean mug: free, some part latent is well away from zero.
+  EXPECT_GT(free_latent, 0.01);
+  EXPECT_LT(largest_part_latent(pinned), 1e-3 * free_latent);
+  EXPECT_EQ(largest_part_latent(other_prior), free_latent);
 }
 
 TEST(Registration, RefusesBadObservations) {

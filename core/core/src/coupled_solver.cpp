@@ -448,7 +448,9 @@ std::vector<SearchOutcome> solve_coupled(const CategoryModel& model, const ViewS
       const Points posed = assemble(model, parts, unknowns, observation, surface.spacing, visible);
       const std::vector<WeightedPair> pairs = mixture.pairs(posed, visible);
       if (pairs.empty()) break;
-      cost = solve_step(parts, seams, pairs_by_part(model, pairs), unknowns, settings);
+      RegistrationSettings noisy = settings;
+      noisy.objective.prior_weight = noisy_prior_weight(mixture.sigma(), settings.objective);
+      cost = solve_step(parts, seams, pairs_by_part(model, pairs), unknowns, noisy);
       ++iterations;
       record_step();
       if (mixture.update(assemble(model, parts, unknowns, observation, surface.spacing, visible), settings.convergence.tolerance))

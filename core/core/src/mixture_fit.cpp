@@ -74,6 +74,12 @@ bool Mixture::update(const Points& posed, double tolerance) {
   return settled;
 }
 
+double noisy_prior_weight(double sigma, const ObjectiveSettings& objective) {
+  if (!(objective.mixture_noise > 0.0)) return objective.prior_weight;
+  const double ratio = sigma / objective.mixture_noise;
+  return objective.prior_weight * std::max(1.0, ratio * ratio);
+}
+
 double finish_in_mixture(const ShapeSpace& space, const ViewSurface& surface, const Observation& observation,
                        const Points& targets, const std::vector<bool>& centres,
                        const RegistrationSettings& settings, SpaceSolution& solution) {
@@ -91,8 +97,9 @@ double finish_in_mixture(const ShapeSpace& space, const ViewSurface& surface, co
     ceres::Problem problem;
     double* rotation = solution.pose.rotation.coeffs().data();
     double* scale = &solution.pose.scale;
-    problem.AddResidualBlock(new MomentCost(space, std::move(pairs), settings.objective.prior_weight), nullptr,
-                             rotation, solution.pose.translation.data(), scale, solution.latent.data());
+    const double prior_weight = noisy_prior_weight(mixture.sigma(), settings.objective);
+    problem.AddResidualBlock(new MomentCost(space, std::move(pairs), prior_weight), nullptr, rotation,
+                             solution.pose.translation.data(), scale, solution.latent.data());
     constrain_pose(problem, rotation, scale, settings);
     solution.cost = solve_inner(problem, settings);
     solution.steps.emplace_back(solution.latent, solution.pose);

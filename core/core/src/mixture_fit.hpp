@@ -54,6 +54,13 @@ class Mixture {
   double sigma2_ = 0.0;
 };
 
+/// The prior's weight in a fit to an observation whose noise is `sigma` per axis (normalised length): the
+/// settings' weight, times (sigma / mixture_noise)^2 above the noise where the mixture starts. A step's data
+/// term is a mean squared distance, the negative log-likelihood times 2 sigma^2 / N, so the prior keeps its
+/// share of the posterior only if its weight grows as the noise's variance; a prior light enough for clean
+/// views otherwise lets a noisy fit bend the shape to the noise (docs/registration.md, "The prior").
+double noisy_prior_weight(double sigma, const ObjectiveSettings& objective);
+
 /// Continues a single space's fit in the mixture of `targets` from `solution` (its closest-point fit), for
 /// at most the settings' outer iterations; `centres` as mixture_centres, over the space's own rows. Returns
 /// the mixture's final standard deviation per axis (normalised length).

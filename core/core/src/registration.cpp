@@ -222,6 +222,8 @@ RegistrationResult register_observation(const CategoryModel& model, const Points
   SpaceSolution whole;
   std::optional<Points> mixture;  // the observed points the space fits end on, when the observation is noisy
   std::vector<bool> centres;      // the canonical rows that centre it (computed only when it is used)
+  // The part fits after a mixture weigh the prior by its variance (detail::noisy_prior_weight).
+  RegistrationSettings fit_settings = settings;
   if (settings.variant != Variant::partwise) {
     detail::SearchOutcome search = detail::search_poses(
         holistic, surface, observation, poses, Eigen::VectorXd::Zero(holistic.dimensions()), settings);
@@ -231,6 +233,8 @@ RegistrationResult register_observation(const CategoryModel& model, const Points
       centres = detail::mixture_centres(model.canonical);
       result.mixture.sigma =
           detail::finish_in_mixture(holistic, surface, observation, *mixture, centres, settings, search.best);
+      fit_settings.objective.prior_weight =
+          detail::noisy_prior_weight(result.mixture.sigma, settings.objective);
       deformed_normalised = search.best.pose.apply(holistic.deformed(search.best.latent));
     }
     record(result, holistic.name, search, model, centroid);
@@ -244,11 +248,12 @@ RegistrationResult register_observation(const CategoryModel& model, const Points
     // Summing over observed points needs the observation split by part: hol+part takes the split from the
     // holistic fit; partwise has none, so its parts use the canonical direction only (Eq. 3).
     std::vector<Observation> part_observations(model.spaces.size());
-    RegistrationSettings part_settings = settings;
+    RegistrationSettings part_settings = fit_settings;
     if (settings.variant == Variant::hol_part)
       part_observations = split_observation(model, observation, deformed_normalised);
     else {
       part_settings.objective.direction = Direction::canonical_to_observed;
+      part_settings.objective.prior_weight = settings.objective.partwise_prior_weight;
       // A part alone is too ambiguous for a search all round (the real mug's handle lands at a wrong yaw):
       // partwise keeps the paper's single start in the category frame.
       part_settings.initialisation.restarts = 1;
@@ -277,7 +282,7 @@ RegistrationResult register_observation(const CategoryModel& model, const Points
               continue;
             }
             const Observation& own = part_observations[p].tree ? part_observations[p] : observation;
-            RegistrationSettings own_settings = settings;
+            RegistrationSettings own_settings = fit_settings;
             if (!part_observations[p].tree)
               own_settings.objective.direction = Direction::canonical_to_observed;
             const Eigen::VectorXd latent =

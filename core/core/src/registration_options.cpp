@@ -63,6 +63,10 @@ std::vector<RegistrationOption> make_options() {
           "prior-weight", "weight of the latent's Gaussian prior against the data term", 0.0, 1e6,
           [](auto& s) -> auto& { return s.objective.prior_weight; }),
       Make::real(
+          "partwise-prior-weight",
+          "partwise: weight of each part's latent prior (a part alone from the category frame needs more)",
+          0.0, 1e6, [](auto& s) -> auto& { return s.objective.partwise_prior_weight; }),
+      Make::real(
           "offset-weight",
           "coupled: weight of the prior keeping each part's rigid offset near zero, per squared normalised "
           "length it moves the part",
