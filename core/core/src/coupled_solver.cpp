@@ -338,16 +338,17 @@ void add_seams(ceres::Problem& problem, const std::vector<Seam>& seams, Unknowns
 }
 
 // One outer step's problem: the data term of every part at the step's pairs, the priors and the seams.
+// `prior_weight`: the latents' (the settings' own, or grown with a mixture's noise: noisy_prior_weight).
 double solve_step(const std::vector<Part>& parts, const std::vector<Seam>& seams,
                   const std::vector<std::vector<WeightedPair>>& pairs, Unknowns& unknowns,
-                  const RegistrationSettings& settings) {
+                  const RegistrationSettings& settings, double prior_weight) {
   ceres::Problem problem;
   double* rotation = unknowns.object.rotation.coeffs().data();
   double* translation = unknowns.object.translation.data();
   double* scale = &unknowns.object.scale;
   for (std::size_t p = 0; p < parts.size(); ++p) {
     problem.AddResidualBlock(
-        new OffsetPartCost(*parts[p].space, pairs[p], settings.objective.prior_weight, parts[p].centre),
+        new OffsetPartCost(*parts[p].space, pairs[p], prior_weight, parts[p].centre),
         nullptr,
         {rotation, translation, scale, unknowns.offset_rotation[p].data(),
          unknowns.offset_translation[p].data(), unknowns.latent[p].data()});
@@ -429,7 +430,8 @@ std::vector<SearchOutcome> solve_coupled(const CategoryModel& model, const ViewS
     }
     const Unknowns before = unknowns;
     cost =
-        solve_step(parts, seams, pairs_by_part(model, weighted_pairs(pairs, settings)), unknowns, settings);
+        solve_step(parts, seams, pairs_by_part(model, weighted_pairs(pairs, settings)), unknowns, settings,
+                   settings.objective.prior_weight);
     iterations = outer + 1;
     record_step();
     // Settled as a single space's fit is: the cost or the unknowns stop moving.
@@ -448,9 +450,8 @@ std::vector<SearchOutcome> solve_coupled(const CategoryModel& model, const ViewS
       const Points posed = assemble(model, parts, unknowns, observation, surface.spacing, visible);
       const std::vector<WeightedPair> pairs = mixture.pairs(posed, visible);
       if (pairs.empty()) break;
-      RegistrationSettings noisy = settings;
-      noisy.objective.prior_weight = noisy_prior_weight(mixture.sigma(), settings.objective);
-      cost = solve_step(parts, seams, pairs_by_part(model, pairs), unknowns, noisy);
+      cost = solve_step(parts, seams, pairs_by_part(model, pairs), unknowns, settings,
+                        noisy_prior_weight(mixture.sigma(), settings.objective));
       ++iterations;
       record_step();
       if (mixture.update(assemble(model, parts, unknowns, observation, surface.spacing, visible), settings.convergence.tolerance))

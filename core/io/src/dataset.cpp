@@ -104,17 +104,24 @@ core::Mesh submesh(const core::Mesh& mesh, const std::vector<int>& face_rows) {
   return part;
 }
 
+// The part files of one instance folder (its regular files), in file-name order.
+std::vector<fs::path> part_files(const fs::path& folder) {
+  std::vector<fs::path> files;
+  for (const fs::path& entry : sorted_entries(folder))
+    if (fs::is_regular_file(entry)) files.push_back(entry);
+  return files;
+}
+
 std::vector<std::string> part_stems(const fs::path& folder) {
   std::vector<std::string> names;
-  for (const fs::path& file : sorted_entries(folder))
-    if (fs::is_regular_file(file)) names.push_back(file.stem().string());
+  for (const fs::path& file : part_files(folder)) names.push_back(file.stem().string());
   return names;
 }
 
-// The part meshes of one instance folder, in file-name order (as part_stems names them).
+// The part meshes of one instance folder, in the order part_stems names them.
 std::vector<core::Mesh> part_meshes(const fs::path& folder) {
   std::vector<core::Mesh> parts;
-  for (const fs::path& file : sorted_entries(folder)) parts.push_back(read_mesh(file));
+  for (const fs::path& file : part_files(folder)) parts.push_back(read_mesh(file));
   return parts;
 }
 
