@@ -12,6 +12,7 @@
 #include "partreg/core/synthetic.hpp"
 #include "partreg/core/training.hpp"
 #include "partreg/core/truth_errors.hpp"
+#include "pose_search.hpp"
 #include "support/test_shapes.hpp"
 
 namespace partreg::core {
@@ -267,12 +268,13 @@ TEST(Registration, ANoisyCloudIsFittedInAGaussianMixture) {
     // prior grew with the noise: the joint problem's closest-point fit gained from the lighter prior more
     // than its mixture did, docs/registration.md "The prior").
     EXPECT_LT(with, (variant == Variant::holistic ? 0.92 : 0.99) * without) << enum_name(variant);
-    // The result says what ran, and on what: the noise read is the same fit's either way, and the mixture's
+    // The result says what ran, and on what: both fits read the view as noisy (against different search
+    // results: with the mixture's limit at 1e6 the search's prior does not grow either), and the mixture's
     // final sigma is the noise's own scale (0.08 per axis), not a fraction or a multiple of it.
     EXPECT_TRUE(in_mixture.mixture.applied);
     EXPECT_FALSE(by_closest.mixture.applied);
-    EXPECT_EQ(in_mixture.mixture.noise, by_closest.mixture.noise);
     EXPECT_GT(in_mixture.mixture.noise, mixture.objective.mixture_noise);
+    EXPECT_GT(by_closest.mixture.noise, mixture.objective.mixture_noise);
     EXPECT_GT(in_mixture.mixture.sigma, 0.8 * 0.08);
     EXPECT_LT(in_mixture.mixture.sigma, 1.25 * 0.08);
     EXPECT_EQ(by_closest.mixture.sigma, 0.0);
@@ -302,6 +304,39 @@ TEST(Registration, ThePriorGrowsWithTheNoisesVarianceInAMixture) {
   EXPECT_NEAR(detail::noisy_prior_weight(0.09, objective), 9 * 2e-5, 1e-12);
   objective.mixture_noise = 0.0;  // a mixture always: no noise to start from, the weight as set
   EXPECT_EQ(detail::noisy_prior_weight(0.09, objective), 2e-5);
+}
+
+// The pose search weighs the prior by the noise the observation reads against its first round's best fit
+// (pose_search.hpp): the settings' weight on a clean view, grown as the noise's variance on a noisy one.
+TEST(Registration, TheSearchWeighsThePriorByTheNoiseItReads) {
+  const ShapeSpace& space = setup().model.holistic();
+  detail::SpaceSolution mean_shape;
+  mean_shape.latent = Eigen::VectorXd::Zero(space.dimensions());
+  const Points clean = space.deformed(mean_shape.latent);
+  std::mt19937 random(3);
+  std::normal_distribution<double> noise(0.0,
+                                         0.08);  // per axis, normalised length: the paper's largest level
+  Points noisy = clean;
+  for (Eigen::Index i = 0; i < noisy.rows(); ++i)
+    for (int c = 0; c < 3; ++c) noisy(i, c) += noise(random);
+  const auto observation_of = [](const Points& points) {
+    detail::Observation observation;
+    observation.points = points;
+    observation.tree = std::make_unique<KdTree>(points);
+    return observation;
+  };
+  RegistrationSettings settings;
+  EXPECT_EQ(detail::search_prior_weight(space, observation_of(clean), mean_shape, settings),
+            settings.objective.prior_weight);
+  // The read saturates below the noise (0.04-0.06 at 0.08, point_normals.hpp): (read / 0.03)^2 is 2-4.
+  const double grown = detail::search_prior_weight(space, observation_of(noisy), mean_shape, settings);
+  std::cout << "search prior at noise 0.08: " << grown / settings.objective.prior_weight
+            << " x the setting\n";
+  EXPECT_GT(grown, 1.5 * settings.objective.prior_weight);
+  EXPECT_LT(grown, 8.0 * settings.objective.prior_weight);
+  settings.objective.mixture_noise = 1e6;  // a limit no view reaches: the weight as set
+  EXPECT_EQ(detail::search_prior_weight(space, observation_of(noisy), mean_shape, settings),
+            settings.objective.prior_weight);
 }
 
 // Partwise fits each part alone from the category frame and weighs its prior by partwise_prior_weight; the

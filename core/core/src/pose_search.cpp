@@ -6,9 +6,11 @@
 #include <numeric>
 #include <optional>
 
+#include "mixture_fit.hpp"
 #include "partreg/core/kdtree.hpp"
 #include "partreg/core/parallel.hpp"
 #include "partreg/core/sampling.hpp"
+#include "point_normals.hpp"
 
 namespace partreg::core::detail {
 namespace {
@@ -172,6 +174,13 @@ std::vector<Candidate> better_half(std::vector<Candidate> candidates, std::size_
 
 }  // namespace
 
+double search_prior_weight(const ShapeSpace& space, const Observation& observation, const SpaceSolution& fit,
+                           const RegistrationSettings& settings) {
+  const Points posed = fit.pose.apply(space.deformed(fit.latent));
+  return noisy_prior_weight(observed_noise(observation.points, posed, canonical_normals(posed)),
+                            settings.objective);
+}
+
 std::vector<Pose> starting_poses(const Eigen::Vector3d& centre, const Points& canonical,
                                  const Observation& observation, const RegistrationSettings& settings) {
   const InitialisationSettings& init = settings.initialisation;
@@ -219,10 +228,15 @@ double selection_score(const ShapeSpace& space, const ViewSurface& surface, cons
   }
 }
 
-SearchOutcome search_poses(const ShapeSpace& space, const ViewSurface& surface, const Observation& observation,
-                           const std::vector<Pose>& starts, const Eigen::VectorXd& latent,
-                           const RegistrationSettings& settings) {
+SearchOutcome search_poses(const ShapeSpace& space, const ViewSurface& surface,
+                           const Observation& observation, const std::vector<Pose>& starts,
+                           const Eigen::VectorXd& latent, const RegistrationSettings& settings,
+                           bool whole_object) {
   const InitialisationSettings& init = settings.initialisation;
+  // The screening's first round runs at the settings' prior; the rest of the search at the prior for the
+  // noise the observation reads against that round's best fit.
+  RegistrationSettings search_settings = settings;
+  bool noise_read = !whole_object;
   std::vector<Candidate> candidates(starts.size());
   for (std::size_t i = 0; i < starts.size(); ++i) {
     candidates[i].fit.latent = latent;
@@ -246,15 +260,20 @@ SearchOutcome search_poses(const ShapeSpace& space, const ViewSurface& surface, 
             const int budget =
                 std::min(steps, settings.convergence.outer_iterations - candidate.fit.iterations);
             if (budget > 0)
-              advance(candidate.fit, budget, screen_space, screen_surface, screen_observation, settings,
-                      &candidate.hints);
-            candidate.score =
-                selection_score(screen_space, screen_surface, screen_observation, candidate.fit, settings);
+              advance(candidate.fit, budget, screen_space, screen_surface, screen_observation,
+                      search_settings, &candidate.hints);
+            candidate.score = selection_score(screen_space, screen_surface, screen_observation, candidate.fit,
+                                              search_settings);
           }
         },
         0, 1);
     candidates = better_half(std::move(candidates), finalists);
     steps *= 2;
+    if (!noise_read) {
+      search_settings.objective.prior_weight =
+          search_prior_weight(space, observation, candidates.front().fit, settings);
+      noise_read = true;
+    }
   }
   parallel_for(
       static_cast<Eigen::Index>(candidates.size()),
@@ -267,9 +286,9 @@ SearchOutcome search_poses(const ShapeSpace& space, const ViewSurface& surface, 
           const int left = settings.convergence.outer_iterations - candidate.fit.iterations;
           if (left > 0 && (coarse || !candidate.fit.converged))
             // The screening's hints index the coarse problem's points: the whole problem starts afresh.
-            advance(candidate.fit, left, space, surface, observation, settings,
+            advance(candidate.fit, left, space, surface, observation, search_settings,
                     coarse ? nullptr : &candidate.hints);
-          candidate.score = selection_score(space, surface, observation, candidate.fit, settings);
+          candidate.score = selection_score(space, surface, observation, candidate.fit, search_settings);
         }
       },
       0, 1);

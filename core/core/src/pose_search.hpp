@@ -28,9 +28,19 @@ struct SearchOutcome {
 
 /// Fits `space` from every pose in `starts`: each gets a few outer steps, the better half (by score) goes on
 /// with twice the steps, until `InitialisationSettings::finalists` remain; those run to convergence and the
-/// lowest score wins.
-SearchOutcome search_poses(const ShapeSpace& space, const ViewSurface& surface, const Observation& observation,
-                           const std::vector<Pose>& starts, const Eigen::VectorXd& latent,
+/// lowest score wins. `whole_object`: the space is the whole observed object (the holistic space), so after
+/// the screening's first round the search weighs the prior by search_prior_weight at that round's best fit
+/// (a part's fit against the whole observation would read the other parts as noise).
+SearchOutcome search_poses(const ShapeSpace& space, const ViewSurface& surface,
+                           const Observation& observation, const std::vector<Pose>& starts,
+                           const Eigen::VectorXd& latent, const RegistrationSettings& settings,
+                           bool whole_object);
+
+/// The prior's weight for a search once `fit` is its best so far: noisy_prior_weight (mixture_fit.hpp) at the
+/// noise the observation reads against the fit (point_normals.hpp's observed_noise); the settings' weight on
+/// a view no noisier than the mixture's limit. On a noisy view a light prior lets a wrong pose fit by bending
+/// the shape to the noise, and the screening keeps it (measured: docs/registration.md, "The prior").
+double search_prior_weight(const ShapeSpace& space, const Observation& observation, const SpaceSolution& fit,
                            const RegistrationSettings& settings);
 
 /// The selection score of a fitted pose and latent: the mean of the robust (trimmed at the loss scale x 4)

@@ -226,7 +226,8 @@ RegistrationResult register_observation(const CategoryModel& model, const Points
   RegistrationSettings fit_settings = settings;
   if (settings.variant != Variant::partwise) {
     detail::SearchOutcome search = detail::search_poses(
-        holistic, surface, observation, poses, Eigen::VectorXd::Zero(holistic.dimensions()), settings);
+        holistic, surface, observation, poses, Eigen::VectorXd::Zero(holistic.dimensions()), settings,
+        /*whole_object=*/true);
     deformed_normalised = search.best.pose.apply(holistic.deformed(search.best.latent));
     mixture = mixture_targets(observation, deformed_normalised, settings, result.mixture);
     if (mixture) {
@@ -277,7 +278,8 @@ RegistrationResult register_observation(const CategoryModel& model, const Points
                                                          : detail::ViewSurface();
             if (settings.variant == Variant::partwise) {
               parts[p - 1] = detail::search_poses(space, part_surface, observation, part_poses,
-                                                  Eigen::VectorXd::Zero(space.dimensions()), part_settings);
+                                                  Eigen::VectorXd::Zero(space.dimensions()), part_settings,
+                                                  /*whole_object=*/false);
               fitted.step("fitted " + space.name);
               continue;
             }
@@ -287,7 +289,8 @@ RegistrationResult register_observation(const CategoryModel& model, const Points
               own_settings.objective.direction = Direction::canonical_to_observed;
             const Eigen::VectorXd latent =
                 space.project_displacement(rows_of(holistic_displacement, space.point_indices));
-            parts[p - 1] = detail::search_poses(space, part_surface, own, {whole.pose}, latent, own_settings);
+            parts[p - 1] = detail::search_poses(space, part_surface, own, {whole.pose}, latent, own_settings,
+                                                /*whole_object=*/false);
             fitted.step("fitted " + space.name);
           }
         },
