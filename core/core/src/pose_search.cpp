@@ -236,7 +236,7 @@ SearchOutcome search_poses(const ShapeSpace& space, const ViewSurface& surface,
   // The screening's first round runs at the settings' prior; the rest of the search at the prior for the
   // noise the observation reads against that round's best fit.
   RegistrationSettings search_settings = settings;
-  bool noise_read = !whole_object;
+  bool read_noise = whole_object;  // once, after the first round
   std::vector<Candidate> candidates(starts.size());
   for (std::size_t i = 0; i < starts.size(); ++i) {
     candidates[i].fit.latent = latent;
@@ -269,10 +269,10 @@ SearchOutcome search_poses(const ShapeSpace& space, const ViewSurface& surface,
         0, 1);
     candidates = better_half(std::move(candidates), finalists);
     steps *= 2;
-    if (!noise_read) {
+    if (read_noise) {
       search_settings.objective.prior_weight =
           search_prior_weight(space, observation, candidates.front().fit, settings);
-      noise_read = true;
+      read_noise = false;
     }
   }
   parallel_for(
