@@ -175,10 +175,9 @@ std::vector<Candidate> better_half(std::vector<Candidate> candidates, std::size_
 }  // namespace
 
 double search_prior_weight(const ShapeSpace& space, const Observation& observation, const SpaceSolution& fit,
-                           const RegistrationSettings& settings) {
+                           const ObjectiveSettings& objective) {
   const Points posed = fit.pose.apply(space.deformed(fit.latent));
-  return noisy_prior_weight(observed_noise(observation.points, posed, canonical_normals(posed)),
-                            settings.objective);
+  return noisy_prior_weight(observed_noise(observation.points, posed, canonical_normals(posed)), objective);
 }
 
 std::vector<Pose> starting_poses(const Eigen::Vector3d& centre, const Points& canonical,
@@ -271,7 +270,7 @@ SearchOutcome search_poses(const ShapeSpace& space, const ViewSurface& surface,
     steps *= 2;
     if (read_noise) {
       search_settings.objective.prior_weight =
-          search_prior_weight(space, observation, candidates.front().fit, settings);
+          search_prior_weight(space, observation, candidates.front().fit, settings.objective);
       read_noise = false;
     }
   }

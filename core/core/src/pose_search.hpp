@@ -41,7 +41,7 @@ SearchOutcome search_poses(const ShapeSpace& space, const ViewSurface& surface,
 /// a view no noisier than the mixture's limit. On a noisy view a light prior lets a wrong pose fit by bending
 /// the shape to the noise, and the screening keeps it (measured: docs/registration.md, "The prior").
 double search_prior_weight(const ShapeSpace& space, const Observation& observation, const SpaceSolution& fit,
-                           const RegistrationSettings& settings);
+                           const ObjectiveSettings& objective);
 
 /// The selection score of a fitted pose and latent: the mean of the robust (trimmed at the loss scale x 4)
 /// closest-point distances each way between the posed deformed canonical points the viewpoint sees and
