@@ -329,7 +329,8 @@ TEST(Registration, TheSearchWeighsThePriorByTheNoiseItReads) {
   EXPECT_EQ(detail::search_prior_weight(space, observation_of(clean), mean_shape, settings.objective),
             settings.objective.prior_weight);
   // The read saturates below the noise (0.04-0.06 at 0.08, point_normals.hpp): (read / 0.03)^2 is 2-4.
-  const double grown = detail::search_prior_weight(space, observation_of(noisy), mean_shape, settings.objective);
+  const double grown =
+      detail::search_prior_weight(space, observation_of(noisy), mean_shape, settings.objective);
   std::cout << "search prior at noise 0.08: " << grown / settings.objective.prior_weight
             << " x the setting\n";
   EXPECT_GT(grown, 1.5 * settings.objective.prior_weight);
