@@ -151,5 +151,23 @@ TEST(CoupledSeamCost, JacobianMatchesCentralDifferences) {
   }
 }
 
+// Each part's prior weighs against its own data as a single space's prior weighs against the whole
+// observation: the setting times the part's share of the step's pair weights (robust weights included).
+TEST(CoupledPartPrior, IsTheSettingTimesThePartsShareOfThePairWeights) {
+  const auto pair = [](double weight) { return WeightedPair{0, Eigen::Vector3d::Zero(), weight}; };
+  // A body with 0.9 of the weight (one pair down-weighted by the robust loss), a handle with 0.1, a hidden
+  // lid.
+  const std::vector<std::vector<WeightedPair>> pairs = {{pair(0.5), pair(0.3), pair(0.1)}, {pair(0.1)}, {}};
+  const std::vector<double> weights = part_prior_weights(pairs, 2e-5);
+  ASSERT_EQ(weights.size(), 3u);
+  EXPECT_NEAR(weights[0], 0.9 * 2e-5, 1e-15);
+  EXPECT_NEAR(weights[1], 0.1 * 2e-5, 1e-15);
+  EXPECT_EQ(weights[2], 0.0);  // no data: the seams and its start hold it
+  // The shares sum to one: the parts together weigh their latents as a single space does.
+  EXPECT_NEAR(weights[0] + weights[1] + weights[2], 2e-5, 1e-15);
+  // No pairs in any part: the setting for every part, not a division by zero.
+  for (const double weight : part_prior_weights({{}, {}}, 2e-5)) EXPECT_EQ(weight, 2e-5);
+}
+
 }  // namespace
 }  // namespace partreg::core::detail

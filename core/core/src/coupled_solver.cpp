@@ -7,6 +7,7 @@
 #include <chrono>
 #include <cmath>
 #include <memory>
+#include <numeric>
 
 #include "mixture_fit.hpp"
 #include "moment_cost.hpp"
@@ -338,7 +339,8 @@ void add_seams(ceres::Problem& problem, const std::vector<Seam>& seams, Unknowns
 }
 
 // One outer step's problem: the data term of every part at the step's pairs, the priors and the seams.
-// `prior_weight`: the latents' (the settings' own, or grown with a mixture's noise: noisy_prior_weight).
+// `prior_weight`: the latents' (the settings' own, or grown with a mixture's noise: noisy_prior_weight),
+// shared out to the parts by their data (part_prior_weights).
 double solve_step(const std::vector<Part>& parts, const std::vector<Seam>& seams,
                   const std::vector<std::vector<WeightedPair>>& pairs, Unknowns& unknowns,
                   const RegistrationSettings& settings, double prior_weight) {
@@ -346,12 +348,12 @@ double solve_step(const std::vector<Part>& parts, const std::vector<Seam>& seams
   double* rotation = unknowns.object.rotation.coeffs().data();
   double* translation = unknowns.object.translation.data();
   double* scale = &unknowns.object.scale;
+  const std::vector<double> part_priors = part_prior_weights(pairs, prior_weight);
   for (std::size_t p = 0; p < parts.size(); ++p) {
-    problem.AddResidualBlock(
-        new OffsetPartCost(*parts[p].space, pairs[p], prior_weight, parts[p].centre),
-        nullptr,
-        {rotation, translation, scale, unknowns.offset_rotation[p].data(),
-         unknowns.offset_translation[p].data(), unknowns.latent[p].data()});
+    problem.AddResidualBlock(new OffsetPartCost(*parts[p].space, pairs[p], part_priors[p], parts[p].centre),
+                             nullptr,
+                             {rotation, translation, scale, unknowns.offset_rotation[p].data(),
+                              unknowns.offset_translation[p].data(), unknowns.latent[p].data()});
     problem.AddResidualBlock(new ceres::AutoDiffCostFunction<OffsetPrior, 6, 3, 3>(new OffsetPrior{
                                  std::sqrt(settings.objective.offset_weight), parts[p].radius}),
                              nullptr, unknowns.offset_rotation[p].data(),
@@ -377,6 +379,18 @@ Unknowns start_from(const CategoryModel& model, const SpaceSolution& holistic) {
 }
 
 }  // namespace
+
+std::vector<double> part_prior_weights(const std::vector<std::vector<WeightedPair>>& pairs,
+                                       double prior_weight) {
+  std::vector<double> data(pairs.size(), 0.0);
+  for (std::size_t p = 0; p < pairs.size(); ++p)
+    for (const WeightedPair& pair : pairs[p]) data[p] += pair.weight;
+  const double total = std::accumulate(data.begin(), data.end(), 0.0);
+  std::vector<double> weights(pairs.size(), prior_weight);
+  if (total > 0.0)
+    for (std::size_t p = 0; p < pairs.size(); ++p) weights[p] = prior_weight * data[p] / total;
+  return weights;
+}
 
 std::unique_ptr<ceres::CostFunction> make_part_data_cost(const ShapeSpace& space,
                                                          const std::vector<WeightedPair>& pairs,

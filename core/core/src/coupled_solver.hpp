@@ -10,7 +10,8 @@
 // that pose. The objective (normalised lengths):
 //   data:   sum over the object's closest-point pairs of the robust weight times the squared distance, each
 //           direction weighed by 1 / its count (as the other variants), every pair going to its point's part
-//   prior:  prior_weight sum_k x_pk^2 / var_pk, per part
+//   prior:  prior_weight s_p sum_k x_pk^2 / var_pk, per part, s_p the part's share of the step's pair weights
+//           (part_prior_weights)
 //   offset: offset_weight (|d_p|^2 + rho_p^2 |r_p|^2), r_p the offset's angle-axis, rho_p the part's
 //           RMS radius
 //   seam:   seam_weight * the mean over seam points z of |m_a(z) - m_b(z)|^2, where
@@ -34,6 +35,15 @@ namespace partreg::core::detail {
 std::unique_ptr<ceres::CostFunction> make_part_data_cost(const ShapeSpace& space,
                                                          const std::vector<WeightedPair>& pairs,
                                                          double prior_weight, const Eigen::Vector3d& centre);
+
+/// Each part's latent prior weight in a step whose pairs, by part, are `pairs`: `prior_weight` times the
+/// part's share of the pairs' total weight, so that a part's prior weighs against its own data as a single
+/// space's prior weighs against the whole observation (holistic, and each part of hol+part). Undivided, the
+/// prior of a handle holding a tenth of the pairs weighed ten times as much against its data as the holistic
+/// fit's does (measured: docs/results.md, "Each part's prior weighs against its own data"). A part without
+/// pairs gets none: the seams and its start hold it. No pairs at all: the weight as given, for every part.
+std::vector<double> part_prior_weights(const std::vector<std::vector<WeightedPair>>& pairs,
+                                       double prior_weight);
 
 /// The seam term of parts a and b at the points `z` (normalised canonical frame), with exact derivatives:
 /// root_weight (m_a(z) - m_b(z)), three residuals per point. Parameter blocks: part a's offset rotation
