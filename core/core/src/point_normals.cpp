@@ -80,4 +80,8 @@ double observed_noise(const Points& observed, const Points& fitted, const Points
   return *middle;
 }
 
+double observed_noise(const Points& observed, const Points& fitted) {
+  return observed_noise(observed, fitted, canonical_normals(fitted));
+}
+
 }  // namespace partreg::core::detail

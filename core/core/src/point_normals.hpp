@@ -23,4 +23,8 @@ Points canonical_normals(const Points& points);
 /// above RegistrationSettings' mixture_noise.
 double observed_noise(const Points& observed, const Points& fitted, const Points& normals);
 
+/// observed_noise along the fitted canonical points' own normals (canonical_normals): the read that decides
+/// the mixture and the pose search's prior.
+double observed_noise(const Points& observed, const Points& fitted);
+
 }  // namespace partreg::core::detail

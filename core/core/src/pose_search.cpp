@@ -177,7 +177,7 @@ std::vector<Candidate> better_half(std::vector<Candidate> candidates, std::size_
 double search_prior_weight(const ShapeSpace& space, const Observation& observation, const SpaceSolution& fit,
                            const ObjectiveSettings& objective) {
   const Points posed = fit.pose.apply(space.deformed(fit.latent));
-  return noisy_prior_weight(observed_noise(observation.points, posed, canonical_normals(posed)), objective);
+  return noisy_prior_weight(observed_noise(observation.points, posed), objective);
 }
 
 std::vector<Pose> starting_poses(const Eigen::Vector3d& centre, const Points& canonical,

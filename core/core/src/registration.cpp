@@ -160,7 +160,7 @@ Points without_strays(const Observation& observation, const Points& fitted) {
 std::optional<Points> mixture_targets(const Observation& observation, const Points& fitted,
                                       const RegistrationSettings& settings, MixtureFinish& finish) {
   Points targets = without_strays(observation, fitted);
-  finish.noise = detail::observed_noise(targets, fitted, detail::canonical_normals(fitted));
+  finish.noise = detail::observed_noise(targets, fitted);
   finish.applied = finish.noise > settings.objective.mixture_noise;
   if (!finish.applied) return std::nullopt;
   return targets;
