@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cctype>
 #include <set>
+#include <sstream>
 
 #include "arrays.hpp"
 #include "partreg/core/errors.hpp"
@@ -60,9 +61,17 @@ py::object value_of(const core::SettingOption<Settings>& option, const std::stri
   if (text == "none") return py::none();
   if (option.value_name == "N") return py::int_(std::stoi(text));
   if (option.value_name == "X") return py::float_(std::stod(text));
-  // A vector, unless a word stands in for one (up = "model": the model's own axis).
-  if (option.value_name.rfind("X,Y,Z", 0) == 0 && !std::isalpha(static_cast<unsigned char>(text.front())))
+  // A number or a vector, unless a word stands in for one (up = "model": the model's own axis).
+  const bool word = std::isalpha(static_cast<unsigned char>(text.front()));
+  if (option.value_name.rfind("X,Y,Z", 0) == 0 && !word)
     return copy_vector(core::parse_vector3(text, option.name));
+  if (option.value_name.rfind("X|", 0) == 0 && !word) return py::float_(std::stod(text));
+  if (option.value_name == "W[,W...]") {  // a list of numbers
+    py::list values;
+    std::stringstream items(text);
+    for (std::string item; std::getline(items, item, ',');) values.append(py::float_(std::stod(item)));
+    return std::move(values);
+  }
   return py::str(text);
 }
 

@@ -126,12 +126,23 @@ void bind_model(py::module_& m) {
   model.def_readonly("category", &core::CategoryModel::category)
       .def_readonly("part_names", &core::CategoryModel::part_names, "part index -> name; empty without parts")
       .def_property_readonly("has_parts", &core::CategoryModel::has_parts)
-      .def_property_readonly("scale", [](const core::CategoryModel& s) { return s.normalization.scale; },
-                             "the canonical's bounding-box diagonal (data units)")
-      .def_property_readonly("centre", [](const core::CategoryModel& s) { return copy_vector(s.normalization.centre); },
-                             "(3,) the canonical's bounding-box centre (data units)")
-      .def_property_readonly("training_instances", [](const core::CategoryModel& s) { return s.training.instances; })
-      .def_property_readonly("canonical_name", [](const core::CategoryModel& s) { return s.training.canonical; })
+      .def_property_readonly(
+          "scale", [](const core::CategoryModel& s) { return s.normalization.scale; },
+          "the canonical's bounding-box diagonal (data units)")
+      .def_property_readonly(
+          "centre", [](const core::CategoryModel& s) { return copy_vector(s.normalization.centre); },
+          "(3,) the canonical's bounding-box centre (data units)")
+      .def_property_readonly("training_instances",
+                             [](const core::CategoryModel& s) { return s.training.instances; })
+      .def_property_readonly("canonical_name",
+                             [](const core::CategoryModel& s) { return s.training.canonical; })
+      .def_property_readonly(
+          "seam_weight", [](const core::CategoryModel& s) { return s.training.seam_weight; },
+          "the coupled variant's seam weight training chose for the category (None without "
+          "parts; register's seam_weight='model' uses it)")
+      .def_property_readonly(
+          "seam_weight_choice", [](const core::CategoryModel& s) { return s.training.seam_weight_choice; },
+          "how seam_weight was chosen: 'given', or the candidates' errors")
       .def_property_readonly(
           "spaces",
           [](py::object self) {
@@ -143,17 +154,26 @@ void bind_model(py::module_& m) {
           "the shape spaces: holistic first, then one per part in part_names order")
       .def("space", &core::CategoryModel::space, py::arg("name"), py::return_value_policy::reference_internal,
            "The space of a part by name, or 'holistic'; UsageError listing the names otherwise.")
-      .def("to_data", [](const core::CategoryModel& s, py::handle points) {
-             return owned_points(s.normalization.undo(to_points(points, "points")));
-           }, py::arg("points"), "Normalised units -> the category's data frame and units")
-      .def("shape_at", [](const core::CategoryModel& s, py::handle latent, const std::string& name) {
-             const core::ShapeSpace& space = s.space(name);
-             return owned_points(s.normalization.undo(space.deformed(latent_of(space, latent))));
-           }, py::arg("latent"), py::arg("space") = "holistic",
-           "The canonical of `space` deformed to a latent (q,), in the category's data frame (data units)")
-      .def_property_readonly("canonical_mesh", [](const core::CategoryModel& s) {
-             return std::make_shared<core::Mesh>(s.canonical_mesh);  // a copy: the model stays as trained
-           }, "a copy of the canonical surface (normalised units); empty for a model trained on clouds");
+      .def(
+          "to_data",
+          [](const core::CategoryModel& s, py::handle points) {
+            return owned_points(s.normalization.undo(to_points(points, "points")));
+          },
+          py::arg("points"), "Normalised units -> the category's data frame and units")
+      .def(
+          "shape_at",
+          [](const core::CategoryModel& s, py::handle latent, const std::string& name) {
+            const core::ShapeSpace& space = s.space(name);
+            return owned_points(s.normalization.undo(space.deformed(latent_of(space, latent))));
+          },
+          py::arg("latent"), py::arg("space") = "holistic",
+          "The canonical of `space` deformed to a latent (q,), in the category's data frame (data units)")
+      .def_property_readonly(
+          "canonical_mesh",
+          [](const core::CategoryModel& s) {
+            return std::make_shared<core::Mesh>(s.canonical_mesh);  // a copy: the model stays as trained
+          },
+          "a copy of the canonical surface (normalised units); empty for a model trained on clouds");
   view_property(model, "canonical", [](core::CategoryModel& s, py::handle o) { return points_view(s.canonical, o); },
                 "(M, 3) canonical points (normalised units)");
   view_property(model, "canonical_part",

@@ -60,9 +60,10 @@ TEST_F(Progress, PipedTrainWritesOneLinePerCpd) {
   const std::size_t instances = summary["instances"].size(), spaces = summary["spaces"].size();
   ASSERT_EQ(instances, 4u);
   ASSERT_EQ(spaces, 3u);  // holistic, body, handle
-  // K (1 + P) steps: a CPD per instance but the canonical and per space, and a PCA-EM per space.
-  const std::size_t steps = instances * spaces;
-  std::size_t cpd_lines = 0, space_lines = 0;
+  // K (1 + P) steps: a CPD per instance but the canonical and per space, and a PCA-EM per space; then one per
+  // instance held out to choose the seam weight (every one but the canonical).
+  const std::size_t steps = instances * spaces + instances - 1;
+  std::size_t cpd_lines = 0, space_lines = 0, seam_lines = 0;
   for (const std::string& line : lines_of(train.err)) {
     if (line.find("] cpd ") != std::string::npos) {
       ++cpd_lines;
@@ -72,10 +73,14 @@ TEST_F(Progress, PipedTrainWritesOneLinePerCpd) {
       EXPECT_NE(line.find(" left] "), std::string::npos) << line;
     }
     if (line.find("] space ") != std::string::npos) ++space_lines;
+    if (line.find("] seam weight: held out") != std::string::npos) ++seam_lines;
     EXPECT_EQ(line.find('\r'), std::string::npos) << "a bar drawn into a log: " << line;
   }
   EXPECT_EQ(cpd_lines, (instances - 1) * spaces) << train.err;
   EXPECT_EQ(space_lines, spaces) << train.err;
+  EXPECT_EQ(seam_lines, instances - 1) << train.err;
+  EXPECT_NE(train.err.find("coupled seam weight "), std::string::npos) << train.err;
+  EXPECT_TRUE(summary["seam_weight"].is_number()) << summary.dump();
 }
 
 TEST_F(Progress, QuietPrintsNothingButAnError) {

@@ -2,6 +2,7 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <set>
 
 #include "partreg/core/errors.hpp"
@@ -54,6 +55,10 @@ TEST(RegistrationOptions, EveryOptionRoundTripsItsDefaultAndAChangedValue) {
   EXPECT_EQ(registration_option("up").get(RegistrationSettings{}), "model");
   set_registration_option(settings, "up", "model");
   EXPECT_FALSE(settings.initialisation.up);
+  // So is the coupled seam weight (the one training chose for the category).
+  EXPECT_EQ(registration_option("seam-weight").get(RegistrationSettings{}), "model");
+  set_registration_option(settings, "seam-weight", "3");
+  EXPECT_EQ(settings.objective.seam_weight, std::optional<double>(3.0));
   // The values a result file records read back into the same request.
   RegistrationSettings copy;
   for (const auto& [name, value] : registration_option_values(settings))
@@ -63,18 +68,11 @@ TEST(RegistrationOptions, EveryOptionRoundTripsItsDefaultAndAChangedValue) {
 
 TEST(RegistrationOptions, BadValuesNameTheValueNotAFlag) {
   RegistrationSettings settings;
-  const std::vector<std::pair<std::string, std::string>> bad = {{"restarts", "0"},
-                                                                {"restarts", "2.5"},
-                                                                {"restarts", "-3"},
-                                                                {"screening-points", "-1"},
-                                                                {"loss-scale", "nan"},
-                                                                {"up", "0,0,0"},
-                                                                {"viewpoint", "nan,0,0"},
-                                                                {"trim", "1.5"},
-                                                                {"loss", "l1"},
-                                                                {"iterations", "many"},
-                                                                {"scale", "maybe"},
-                                                                {"observed-points", "1e30"}};
+  const std::vector<std::pair<std::string, std::string>> bad = {
+      {"restarts", "0"},     {"restarts", "2.5"},     {"restarts", "-3"},       {"screening-points", "-1"},
+      {"loss-scale", "nan"}, {"up", "0,0,0"},         {"viewpoint", "nan,0,0"}, {"trim", "1.5"},
+      {"loss", "l1"},        {"iterations", "many"},  {"scale", "maybe"},       {"observed-points", "1e30"},
+      {"seam-weight", "-1"}, {"seam-weight", "stiff"}};
   for (const auto& [name, value] : bad) {
     const std::string message = usage_message([&] { set_registration_option(settings, name, value); });
     EXPECT_FALSE(message.empty()) << name << "=" << value << " was accepted";
@@ -94,6 +92,9 @@ TEST(RegistrationOptions, ValidateRefusesSettingsBuiltInCode) {
   EXPECT_THROW(validate(settings), UsageError);
   settings = {};
   settings.objective.loss_scale = -1.0;
+  EXPECT_THROW(validate(settings), UsageError);
+  settings = {};
+  settings.objective.seam_weight = std::nan("");
   EXPECT_THROW(validate(settings), UsageError);
 }
 

@@ -27,6 +27,9 @@ TEST(TrainingOptions, EveryOptionRoundTripsItsDefaultAndAChangedValue) {
   training_option("part-points").set(settings, "0");
   training_option("lambda").set(settings, "2.5");
   training_option("up").set(settings, "0,0,1");
+  training_option("seam-weights").set(settings, "0.5,20");
+  EXPECT_EQ(settings.seam_weight_candidates, (std::vector<double>{0.5, 20.0}));
+  EXPECT_EQ(training_option("seam-weights").get(settings), "0.5,20");
   EXPECT_DOUBLE_EQ(settings.seam_band, 0.12);
   EXPECT_EQ(settings.canonical_points, 800);
   EXPECT_EQ(settings.min_part_points, 0);
@@ -41,8 +44,10 @@ TEST(TrainingOptions, EveryOptionRoundTripsItsDefaultAndAChangedValue) {
 TEST(TrainingOptions, BadValuesAreRefusedNamingTheValue) {
   TrainingSettings settings;
   const std::vector<std::pair<std::string, std::string>> bad = {
-      {"seam-band", "2"}, {"seam-band", "-0.1"}, {"latent", "0"},  {"points", "9"},
-      {"beta", "0"},      {"lambda", "nan"},     {"up", "0,0,0"}, {"part-points", "1.5"}};
+      {"seam-band", "2"},     {"seam-band", "-0.1"},    {"latent", "0"},        {"points", "9"},
+      {"beta", "0"},          {"lambda", "nan"},        {"up", "0,0,0"},        {"part-points", "1.5"},
+      {"seam-weights", ""},   {"seam-weights", "1,,3"}, {"seam-weights", "1,"}, {"seam-weights", "-1"},
+      {"seam-weights", "1,x"}};
   for (const auto& [name, value] : bad) {
     const std::string message = usage_message([&] { training_option(name).set(settings, value); });
     EXPECT_NE(message.find(name), std::string::npos) << name << "=" << value << ": '" << message << "'";
@@ -58,6 +63,9 @@ TEST(TrainingOptions, ValidateAndTrainingRefuseSettingsBuiltInCode) {
   EXPECT_THROW(validate(settings), UsageError);
   settings = {};
   settings.up = Eigen::Vector3d(0, std::nan(""), 1);
+  EXPECT_THROW(validate(settings), UsageError);
+  settings = {};
+  settings.seam_weight_candidates = {};
   EXPECT_THROW(validate(settings), UsageError);
   settings = {};
   settings.latent_dimensions = 0;

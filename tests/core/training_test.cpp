@@ -3,11 +3,14 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <map>
+#include <sstream>
 
 #include "partreg/core/deformation.hpp"
 #include "partreg/core/errors.hpp"
 #include "partreg/core/gaussian_kernel.hpp"
 #include "partreg/core/kdtree.hpp"
+#include "partreg/core/registration.hpp"
 #include "partreg/core/synthetic.hpp"
 
 namespace partreg::core {
@@ -100,11 +103,11 @@ TEST(Training, KeepsEachInstancesFieldAndLatentsAndReportsMonotoneProgressToTheE
   train_category("mugs", instances, {"body", "handle"}, settings, nullptr,
                  [&](const std::string& line) { lines.push_back(line); });
 
-  // K (1 + P) steps for 4 instances and 2 parts, counted up by one, ending at 1; the line callback gets the
-  // same lines.
-  ASSERT_EQ(steps.size(), 12u);
+  // K (1 + P) steps for 4 instances and 2 parts, and one per instance held out to choose the seam weight (all
+  // but the canonical), counted up by one, ending at 1; the line callback gets the same lines.
+  ASSERT_EQ(steps.size(), 15u);
   for (std::size_t i = 0; i < steps.size(); ++i) {
-    EXPECT_EQ(steps[i].total, 12u);
+    EXPECT_EQ(steps[i].total, 15u);
     EXPECT_EQ(steps[i].done, i + 1);
     if (i > 0) EXPECT_GT(steps[i].fraction(), steps[i - 1].fraction());
   }
@@ -185,6 +188,56 @@ TEST(Training, PartSpacesAgreeAtTheirSeamsOnTheirTrainingShapes) {
     settings.seam_band = band;
     EXPECT_THROW(train_category("mugs", instances, {"body", "handle"}, settings), UsageError) << band;
   }
+}
+
+// The candidates' mean errors as the choice's explanation lists them ("... diagonal: 1: 2.4, 100: 2.6").
+std::map<double, double> listed_errors(const std::string& explanation) {
+  std::map<double, double> errors;
+  std::stringstream items(explanation.substr(explanation.find("diagonal:") + 9));
+  for (std::string item; std::getline(items, item, ',');) {
+    const std::size_t colon = item.find(':');
+    errors[std::stod(item.substr(0, colon))] = std::stod(item.substr(colon + 1));
+  }
+  return errors;
+}
+
+TEST(Training, ChoosesTheCoupledSeamWeightOnHeldOutViewsAndRegistrationUsesIt) {
+  const std::vector<TrainingInstance> instances = synthetic_mugs(4, 6, 500);
+  TrainingSettings settings = small_settings(150, 300, 2);
+  settings.seam_weight_candidates = {
+      0.3, 100.0};  // far apart; neither is the default, which another must clearly beat
+  const CategoryModel model = train_category("mugs", instances, {"body", "handle"}, settings);
+  ASSERT_TRUE(model.training.seam_weight.has_value());
+  const std::map<double, double> errors = listed_errors(model.training.seam_weight_choice);
+  ASSERT_EQ(errors.size(), 2u) << model.training.seam_weight_choice;
+  for (const auto& [weight, error] : errors) EXPECT_GT(error, 0.0) << weight;
+  // The one with the lower mean error over the held-out instances' views is kept.
+  const double best = errors.at(0.3) < errors.at(100.0) ? 0.3 : 100.0;
+  EXPECT_EQ(*model.training.seam_weight, best) << model.training.seam_weight_choice;
+  EXPECT_NE(errors.at(0.3), errors.at(100.0));  // the weights were really tried
+
+  // Registration takes the model's unless asked for another.
+  RegistrationSettings request;
+  EXPECT_EQ(with_model_defaults(request, model).objective.seam_weight, best);
+  request.objective.seam_weight = 7.0;
+  EXPECT_EQ(with_model_defaults(request, model).objective.seam_weight, 7.0);
+
+  // One weight is given, not chosen; fewer than three instances leave nothing to hold out.
+  settings.seam_weight_candidates = {3.0};
+  const CategoryModel given = train_category("mugs", instances, {"body", "handle"}, settings);
+  EXPECT_EQ(given.training.seam_weight, 3.0);
+  EXPECT_EQ(given.training.seam_weight_choice, "given");
+  settings.seam_weight_candidates = {1.0, 3.0, 10.0, 30.0};
+  const CategoryModel two =
+      train_category("mugs", {instances[0], instances[1]}, {"body", "handle"}, settings);
+  EXPECT_EQ(two.training.seam_weight, 10.0);
+  EXPECT_NE(two.training.seam_weight_choice.find("too few instances"), std::string::npos);
+  // A model without parts has no seam: registration falls back to the default.
+  std::vector<TrainingInstance> whole = instances;
+  for (TrainingInstance& instance : whole) instance.part.resize(0);
+  const CategoryModel plain = train_category("mugs", whole, {}, settings);
+  EXPECT_FALSE(plain.training.seam_weight.has_value());
+  EXPECT_EQ(with_model_defaults({}, plain).objective.seam_weight, kDefaultSeamWeight);
 }
 
 TEST(Training, APartWithoutCanonicalPointsIsRefusedNamingIt) {

@@ -40,6 +40,10 @@ def test_model_accessors(partreg, model):
     data = model.to_data(np.ascontiguousarray(model.canonical))
     assert np.allclose(data, model.centre + model.scale * model.canonical, atol=EXACT)
     assert len(model.training_instances) == 10 and model.canonical_name in model.training_instances
+    # The coupled seam weight training chose among its candidates on held-out mugs; register's default uses it.
+    assert model.seam_weight in partreg.training_defaults()["seam_weights"]
+    assert "held-out instances" in model.seam_weight_choice
+    assert partreg.registration_defaults()["seam_weight"] == "model"
     assert model.canonical_mesh.faces.shape[1] == 3 and model.canonical_mesh.vertices.shape[0] > 0
     # Views, not copies: two reads share memory; read-only, since every registration reads the model.
     assert np.shares_memory(model.canonical, model.canonical)

@@ -51,6 +51,8 @@ nlohmann::json describe(const core::CategoryModel& model) {
             {"beta", record.beta},
             {"lambda", record.lambda},
             {"seam_band", record.seam_band},
+            {"seam_weight", record.seam_weight ? nlohmann::json(*record.seam_weight) : nlohmann::json()},
+            {"seam_weight_choice", record.seam_weight_choice},
             {"outlier_weight", record.outlier_weight},
             {"latent_dimensions", record.latent_dimensions}}}};
 }
@@ -82,6 +84,9 @@ void print(const nlohmann::json& info) {
               << std::round(info["training_seam_gap"]["max"].get<double>() * 1e4) / 100
               << "% of the diagonal (seam band " << info["training"]["seam_band"] << ")\n";
   const auto& training = info["training"];
+  if (!training["seam_weight"].is_null())
+    std::cout << "coupled seam weight " << training["seam_weight"] << " ("
+              << training["seam_weight_choice"].get<std::string>() << ")\n";
   std::cout << "trained on " << training["instances"].size() << " instances " << training["instances"].dump()
             << ", canonical " << training["canonical"].get<std::string>() << " ("
             << training["canonical_choice"].get<std::string>() << "), beta " << training["beta"]

@@ -37,6 +37,9 @@ nlohmann::json summary_json(const core::CategoryModel& model, const core::Traini
           {"instances", model.training.instances},
           {"spaces", spaces_json(model)},
           {"label_agreement", report.label_agreement},
+          {"seam_weight",
+           model.training.seam_weight ? nlohmann::json(*model.training.seam_weight) : nlohmann::json()},
+          {"seam_weight_choice", model.training.seam_weight_choice},
           {"settings", settings_json(core::training_option_values(settings))},
           {"seconds", report.seconds}};
 }
@@ -56,6 +59,9 @@ void print_summary(const core::CategoryModel& model, const core::TrainingReport&
       std::cerr << ' ' << part << ' ' << std::round(1000 * fraction) / 10 << '%';
     std::cerr << '\n';
   }
+  if (model.training.seam_weight)
+    std::cerr << "coupled seam weight " << *model.training.seam_weight << " ("
+              << model.training.seam_weight_choice << ")\n";
   std::cerr << "trained in " << report.seconds << " s\n";
 }
 

@@ -38,6 +38,8 @@ void CategoryModel::validate() const {
     fail("the normalisation scale must be a positive finite length");
   if (!normalization.centre.allFinite()) fail("the normalisation centre is not finite");
   if (!up.allFinite() || std::abs(up.norm() - 1.0) > 1e-6) fail("the up axis must be a finite unit vector");
+  if (training.seam_weight && !(*training.seam_weight >= 0.0 && *training.seam_weight <= 1e6))
+    fail("the seam weight must lie in [0, 1e6]");
   if (!canonical_mesh.vertices.allFinite()) fail("mesh vertices are not finite");
   if (canonical_part.size() != m) fail("part labels do not match the canonical points");
   const int parts = static_cast<int>(part_names.size());

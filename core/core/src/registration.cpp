@@ -194,6 +194,8 @@ FitStatistics fit_statistics(const Points& deformed, const Points& observed, dou
 
 RegistrationSettings with_model_defaults(RegistrationSettings settings, const CategoryModel& model) {
   if (!settings.initialisation.up) settings.initialisation.up = model.up;
+  if (!settings.objective.seam_weight)
+    settings.objective.seam_weight = model.training.seam_weight.value_or(kDefaultSeamWeight);
   return settings;
 }
 

@@ -29,6 +29,21 @@ RegistrationOption up_axis() {
           }};
 }
 
+RegistrationOption seam_weight() {
+  return {"seam-weight",
+          "X|model",
+          "coupled: weight of the mean squared gap between parts at their seams (normalised length squared); "
+          "'model': the one training chose for the category",
+          false,
+          [](RegistrationSettings& s, const std::string& v) {
+            if (v == "model") return s.objective.seam_weight.reset();
+            s.objective.seam_weight = detail::real_in(v, "seam-weight", 0.0, 1e6);
+          },
+          [](const RegistrationSettings& s) {
+            return s.objective.seam_weight ? detail::text_of(*s.objective.seam_weight) : std::string("model");
+          }};
+}
+
 RegistrationOption viewpoint() {
   return {"viewpoint",
           "X,Y,Z|none",
@@ -71,10 +86,7 @@ std::vector<RegistrationOption> make_options() {
           "coupled: weight of the prior keeping each part's rigid offset near zero, per squared normalised "
           "length it moves the part",
           0.0, 1e6, [](auto& s) -> auto& { return s.objective.offset_weight; }),
-      Make::real(
-          "seam-weight",
-          "coupled: weight of the mean squared gap between parts at their seams (normalised length squared)",
-          0.0, 1e6, [](auto& s) -> auto& { return s.objective.seam_weight; }),
+      seam_weight(),
       Make::real(
           "seam-radius",
           "coupled: canonical points this close to another part's are seam points (normalised length)", 0.0,
@@ -130,28 +142,29 @@ std::vector<RegistrationOption> make_options() {
           1.0, [](auto& s) -> auto& { return s.sampling.voxel_size; }),
       Make::real(
           "stray-limit",
-          "an observed point whose 2nd neighbour is this many times the median away is matched only near the fit",
+          "an observed point whose 2nd neighbour is this many times the median away is matched only near the "
+          "fit",
           0.0, 1000.0, [](auto& s) -> auto& { return s.sampling.stray_limit; }),
       Make::flag(
           "refine", "a non-rigid fit beyond the shape space where the observation was seen",
           [](auto& s) -> auto& { return s.refinement.enabled; }),
       Make::real(
-          "refine-beta", "width of the refinement's kernel (normalised length): the finest detail", 0.005, 1.0,
-          [](auto& s) -> auto& { return s.refinement.beta; }),
+          "refine-beta", "width of the refinement's kernel (normalised length): the finest detail", 0.005,
+          1.0, [](auto& s) -> auto& { return s.refinement.beta; }),
       Make::real(
           "refine-lambda", "smoothness of the refinement's field against the data", 1e-6, 1e6,
           [](auto& s) -> auto& { return s.refinement.lambda; }),
       Make::real(
-          "refine-anchor", "pull of unobserved points back to the space's shape (1: as firm as data)", 0.0, 1e6,
-          [](auto& s) -> auto& { return s.refinement.anchor; }),
+          "refine-anchor", "pull of unobserved points back to the space's shape (1: as firm as data)", 0.0,
+          1e6, [](auto& s) -> auto& { return s.refinement.anchor; }),
       Make::real(
           "refine-gate", "a point farther than this from the observation is unobserved (normalised length)",
           1e-4, 10.0, [](auto& s) -> auto& { return s.refinement.gate; }),
       Make::real(
           "refine-outliers",
-          "least share of the observation the refinement explains as uniform noise (the share of strays raises it)",
-          0.0, 0.99,
-          [](auto& s) -> auto& { return s.refinement.outlier_weight; }),
+          "least share of the observation the refinement explains as uniform noise (the share of strays "
+          "raises it)",
+          0.0, 0.99, [](auto& s) -> auto& { return s.refinement.outlier_weight; }),
       Make::whole(
           "refine-iterations", "refinement EM iterations at most", 1, 1000,
           [](auto& s) -> auto& { return s.refinement.iterations; }),

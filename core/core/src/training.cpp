@@ -8,6 +8,7 @@
 #include "partreg/core/sampling.hpp"
 #include "partreg/core/training_options.hpp"
 #include "seam_agreement.hpp"
+#include "seam_weight_choice.hpp"
 
 namespace partreg::core {
 namespace {
@@ -258,7 +259,12 @@ CategoryModel train_category(const std::string& category, const std::vector<Trai
     throw InputError("the canonical instance '" + canonical.name + "' has no part labels");
 
   const int spaces = 1 + static_cast<int>(part_names.size());
-  StepCounter progress(instances.size() * static_cast<std::size_t>(spaces), steps);
+  const std::size_t held_out =
+      part_names.empty()
+          ? 0
+          : detail::seam_weight_held_out(instances.size(), canonical_index, settings.seam_weight_candidates)
+                .size();
+  StepCounter progress(instances.size() * static_cast<std::size_t>(spaces) + held_out, steps);
   CategoryModel model;
   model.category = category;
   model.part_names = part_names;
@@ -291,6 +297,7 @@ CategoryModel train_category(const std::string& category, const std::vector<Trai
   model.spaces.push_back(
       learn_space("holistic", all_rows, model.canonical, settings, holistic_weights, progress));
   model.training_weights = stack_rows(holistic_weights);
+  std::vector<std::vector<Points>> fields{holistic_weights};  // every space's, for the seam weight's choice
 
   // One space per part: the canonical part onto the same part of every instance.
   for (int part = 0; part < static_cast<int>(part_names.size()); ++part) {
@@ -322,6 +329,7 @@ CategoryModel train_category(const std::string& category, const std::vector<Trai
     }
     model.spaces.push_back(
         learn_space(part_names[part], rows, canonical_part, settings, part_weights, progress));
+    fields.push_back(std::move(part_weights));
   }
 
   TrainingRecord& record = model.training;
@@ -337,6 +345,15 @@ CategoryModel train_category(const std::string& category, const std::vector<Trai
   record.latent_dimensions = settings.latent_dimensions;
   record.seed = settings.seed;
   model.up = settings.up.normalized();
+  if (model.has_parts()) {  // last: its registrations use the model as registration will
+    std::vector<Points> samples;
+    for (const Target& target : targets) samples.push_back(target.points);
+    const detail::SeamWeightChoice choice =
+        detail::choose_seam_weight(model, fields, samples, canonical_index, settings,
+                                   [&progress](const std::string& line) { progress.step(line); });
+    record.seam_weight = choice.weight;
+    record.seam_weight_choice = choice.explanation;
+  }
   model.validate();
   out.seconds = seconds_since(start);
   return model;

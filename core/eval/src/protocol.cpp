@@ -354,7 +354,9 @@ std::vector<EvalRow> run_evaluation(const EvalInput& input, const EvalSettings& 
       std::ostringstream line;
       line << "fold " << fold << ": trained on " << model.training.instances.size() << " instances in "
            << std::chrono::duration<double>(Clock::now() - start).count() << " s (canonical "
-           << model.training.canonical << ")";
+           << model.training.canonical;
+      if (model.training.seam_weight) line << ", coupled seam weight " << *model.training.seam_weight;
+      line << ")";
       progress({done, total, line.str(), /*bounded=*/false, /*aside=*/true});
     }
     for (const TestCase& test : tests) {

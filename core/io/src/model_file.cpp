@@ -90,6 +90,8 @@ nlohmann::json training_json(const core::TrainingRecord& record) {
           {"canonical_points", record.canonical_points},
           {"min_part_points", record.min_part_points},
           {"seam_band", record.seam_band},
+          {"seam_weight", record.seam_weight ? nlohmann::json(*record.seam_weight) : nlohmann::json()},
+          {"seam_weight_choice", record.seam_weight_choice},
           {"beta", record.beta},
           {"lambda", record.lambda},
           {"outlier_weight", record.outlier_weight},
@@ -265,6 +267,10 @@ core::TrainingRecord training_from_json(const nlohmann::json& json) {
       json.contains("min_part_points") ? detail::integer_of<int>(json.at("min_part_points")) : 0;
   // Absent in files written before the part spaces agreed at their seams.
   record.seam_band = json.contains("seam_band") ? json.at("seam_band").get<double>() : 0.0;
+  // Null without parts; absent in files written before training chose the coupled variant's seam weight.
+  if (json.contains("seam_weight") && !json.at("seam_weight").is_null())
+    record.seam_weight = json.at("seam_weight").get<double>();
+  record.seam_weight_choice = json.value("seam_weight_choice", std::string());
   record.beta = json.at("beta").get<double>();
   record.lambda = json.at("lambda").get<double>();
   record.outlier_weight = json.at("outlier_weight").get<double>();

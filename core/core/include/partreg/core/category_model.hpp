@@ -4,6 +4,7 @@
 /// category's data frame to normalised units, and one shape space for the whole object plus one per part.
 /// This is what `partreg train` writes and every later command loads.
 
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -21,6 +22,10 @@ struct TrainingRecord {
   int canonical_points = 0;            ///< M (with every part's floor applied)
   int min_part_points = 0;             ///< floor of canonical points per part used (0: none, older files)
   double seam_band = 0.0;              ///< band the part fields were refitted in at seams (0: none, older files)
+  /// The coupled variant's seam weight for this category, which registration uses unless asked for another
+  /// (unset in models without parts and older files: registration then uses kDefaultSeamWeight).
+  std::optional<double> seam_weight;
+  std::string seam_weight_choice;      ///< "given" or the figures it was chosen by (empty when none was)
   double beta = 0.0;                   ///< CPD kernel width (normalised units)
   double lambda = 0.0;                 ///< CPD smoothness weight (unitless)
   double outlier_weight = 0.0;         ///< CPD w

@@ -90,7 +90,8 @@ struct RegistrationResult {
   double seconds = 0.0;
 };
 
-/// `settings` with what it leaves to the model filled in from `model`: the up axis (CategoryModel::up).
+/// `settings` with what it leaves to the model filled in from `model`: the up axis (CategoryModel::up) and
+/// the coupled variant's seam weight (TrainingRecord::seam_weight).
 RegistrationSettings with_model_defaults(RegistrationSettings settings, const CategoryModel& model);
 
 /// Registers `model` to `observed` (data units, any frame near the category's). Throws InputError for fewer

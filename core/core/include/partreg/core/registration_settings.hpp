@@ -13,6 +13,10 @@
 
 namespace partreg::core {
 
+/// The coupled variant's seam weight where neither the request nor the model names one: kettles' full views
+/// measured best at 10 (docs/registration.md).
+inline constexpr double kDefaultSeamWeight = 10.0;
+
 /// Which shape spaces are fitted, and how (paper, section 3.2).
 enum class Variant {
   holistic,  ///< one space for the whole object
@@ -68,8 +72,10 @@ struct ObjectiveSettings {
   /// in radians times the part's RMS radius), against the data term's mean squared distance.
   double offset_weight = 1.0;
   /// Coupled variant: weight of the seam term, the mean squared distance between the two parts' positions
-  /// of the canonical points near a part boundary (normalised length squared), against the data term.
-  double seam_weight = 10.0;
+  /// of the canonical points near a part boundary (normalised length squared), against the data term. Unset:
+  /// the model's own, which training chose for its category (TrainingRecord::seam_weight), or
+  /// kDefaultSeamWeight for a model that has none.
+  std::optional<double> seam_weight;
   /// Coupled variant: canonical points of a part within this of another part's are seam points (normalised
   /// length; 0.03 is about one canonical spacing at M = 1000, the radius seam_gap measures at).
   double seam_radius = 0.03;

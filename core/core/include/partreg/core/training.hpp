@@ -41,6 +41,10 @@ struct TrainingSettings {
   /// spaces can represent attached parts (docs/training.md). 0 keeps the part CPDs' fields as they are
   /// (the paper's training). Outside [0, 1]: UsageError.
   double seam_band = 0.08;
+  /// The coupled variant's seam weights training chooses among for a category with parts: each is tried on
+  /// the views of held-out training instances and the best is kept in the model, which registration uses
+  /// unless asked for another (docs/training.md). One weight: that one, without trying. Each in [0, 1e6].
+  std::vector<double> seam_weight_candidates = {1.0, 3.0, 10.0, 30.0};
   int latent_dimensions = 5;  ///< q per space (clamped to K - 1 for K training instances)
   double beta = 0.3;          ///< CPD kernel width (normalised length); see docs/training.md for the choice
   double lambda = 3.0;        ///< CPD smoothness weight (unitless)
