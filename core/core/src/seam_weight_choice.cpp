@@ -156,10 +156,10 @@ SeamWeightChoice choose_seam_weight(const CategoryModel& model,
   }
   std::size_t best = static_cast<std::size_t>(std::min_element(means.begin(), means.end()) - means.begin());
   const auto standing = std::find(candidates.begin(), candidates.end(), kDefaultSeamWeight);
-  const bool kept =
-      standing != candidates.end() &&
-      means[best] > (1.0 - kClearMargin) * means[static_cast<std::size_t>(standing - candidates.begin())];
-  if (kept) best = static_cast<std::size_t>(standing - candidates.begin());
+  const auto standing_index = static_cast<std::size_t>(standing - candidates.begin());
+  const bool kept = standing != candidates.end() && best != standing_index &&
+                    means[best] > (1.0 - kClearMargin) * means[standing_index];
+  if (kept) best = standing_index;
   std::ostringstream text;
   text << "coupled registrations of " << held_out.size()
        << " held-out instances' own views (whole and 4 partial), mean symmetric RMS % of the diagonal:";
