@@ -144,6 +144,16 @@ void bind_model(py::module_& m) {
           "seam_weight_choice", [](const core::CategoryModel& s) { return s.training.seam_weight_choice; },
           "how seam_weight was chosen: 'given', or the candidates' errors")
       .def_property_readonly(
+          "seam_weight_trials",
+          [](const core::CategoryModel& s) {
+            std::map<double, double> errors;
+            for (const core::SeamWeightTrial& trial : s.training.seam_weight_trials)
+              errors[trial.weight] = trial.error;
+            return errors;
+          },
+          "each candidate seam weight's mean symmetric RMS error (fraction of the diagonal) on the held-out "
+          "instances' views it was chosen by ({} when it was given)")
+      .def_property_readonly(
           "spaces",
           [](py::object self) {
             py::list spaces;

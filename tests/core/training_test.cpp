@@ -190,17 +190,6 @@ TEST(Training, PartSpacesAgreeAtTheirSeamsOnTheirTrainingShapes) {
   }
 }
 
-// The candidates' mean errors as the choice's explanation lists them ("... diagonal: 1: 2.4, 100: 2.6").
-std::map<double, double> listed_errors(const std::string& explanation) {
-  std::map<double, double> errors;
-  std::stringstream items(explanation.substr(explanation.find("diagonal:") + 9));
-  for (std::string item; std::getline(items, item, ',');) {
-    const std::size_t colon = item.find(':');
-    errors[std::stod(item.substr(0, colon))] = std::stod(item.substr(colon + 1));
-  }
-  return errors;
-}
-
 TEST(Training, ChoosesTheCoupledSeamWeightOnHeldOutViewsAndRegistrationUsesIt) {
   const std::vector<TrainingInstance> instances = synthetic_mugs(4, 6, 500);
   TrainingSettings settings = small_settings(150, 300, 2);
@@ -208,7 +197,8 @@ TEST(Training, ChoosesTheCoupledSeamWeightOnHeldOutViewsAndRegistrationUsesIt) {
       0.3, 100.0};  // far apart; neither is the default, which another must clearly beat
   const CategoryModel model = train_category("mugs", instances, {"body", "handle"}, settings);
   ASSERT_TRUE(model.training.seam_weight.has_value());
-  const std::map<double, double> errors = listed_errors(model.training.seam_weight_choice);
+  std::map<double, double> errors;
+  for (const SeamWeightTrial& trial : model.training.seam_weight_trials) errors[trial.weight] = trial.error;
   ASSERT_EQ(errors.size(), 2u) << model.training.seam_weight_choice;
   for (const auto& [weight, error] : errors) EXPECT_GT(error, 0.0) << weight;
   // The one with the lower mean error over the held-out instances' views is kept.
@@ -227,6 +217,7 @@ TEST(Training, ChoosesTheCoupledSeamWeightOnHeldOutViewsAndRegistrationUsesIt) {
   const CategoryModel given = train_category("mugs", instances, {"body", "handle"}, settings);
   EXPECT_EQ(given.training.seam_weight, 3.0);
   EXPECT_EQ(given.training.seam_weight_choice, "given");
+  EXPECT_TRUE(given.training.seam_weight_trials.empty());
   settings.seam_weight_candidates = {1.0, 3.0, 10.0, 30.0};
   const CategoryModel two =
       train_category("mugs", {instances[0], instances[1]}, {"body", "handle"}, settings);

@@ -117,6 +117,12 @@ TEST(ModelFile, SavesAndLoadsBitForBit) {
   EXPECT_EQ(read.training.instances, model.training.instances);
   EXPECT_EQ(read.training.min_part_points, 150);  // the sampling used: the default floor per part
   EXPECT_EQ(read.training.canonical_points, model.canonical.rows());
+  EXPECT_EQ(read.training.seam_weight, model.training.seam_weight);
+  ASSERT_EQ(read.training.seam_weight_trials.size(), model.training.seam_weight_trials.size());
+  for (std::size_t c = 0; c < model.training.seam_weight_trials.size(); ++c) {
+    EXPECT_EQ(read.training.seam_weight_trials[c].weight, model.training.seam_weight_trials[c].weight);
+    EXPECT_EQ(read.training.seam_weight_trials[c].error, model.training.seam_weight_trials[c].error);
+  }
   EXPECT_EQ(read.training_weights, model.training_weights);
   EXPECT_EQ(read.training_weights.rows(), 4);
   // Writing what was read gives the same bytes.

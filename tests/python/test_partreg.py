@@ -43,6 +43,9 @@ def test_model_accessors(partreg, model):
     # The coupled seam weight training chose among its candidates on held-out mugs; register's default uses it.
     assert model.seam_weight in partreg.training_defaults()["seam_weights"]
     assert "held-out instances" in model.seam_weight_choice
+    trials = model.seam_weight_trials
+    assert sorted(trials) == sorted(partreg.training_defaults()["seam_weights"])
+    assert all(0.0 < error < 0.2 for error in trials.values())
     assert partreg.registration_defaults()["seam_weight"] == "model"
     assert model.canonical_mesh.faces.shape[1] == 3 and model.canonical_mesh.vertices.shape[0] > 0
     # Views, not copies: two reads share memory; read-only, since every registration reads the model.

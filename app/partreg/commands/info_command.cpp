@@ -44,17 +44,7 @@ nlohmann::json describe(const core::CategoryModel& model) {
           {"spaces", spaces_json(model)},
           {"stretch", stretch_json(model)},
           {"training_seam_gap", training_seam_gap_json(model)},
-          {"training",
-           {{"instances", record.instances},
-            {"canonical", record.canonical},
-            {"canonical_choice", record.canonical_choice},
-            {"beta", record.beta},
-            {"lambda", record.lambda},
-            {"seam_band", record.seam_band},
-            {"seam_weight", record.seam_weight ? nlohmann::json(*record.seam_weight) : nlohmann::json()},
-            {"seam_weight_choice", record.seam_weight_choice},
-            {"outlier_weight", record.outlier_weight},
-            {"latent_dimensions", record.latent_dimensions}}}};
+          {"training", io::training_record_json(record)}};
 }
 
 void print(const nlohmann::json& info) {

@@ -31,15 +31,16 @@ struct TrainOptions {
 
 nlohmann::json summary_json(const core::CategoryModel& model, const core::TrainingReport& report,
                             const core::TrainingSettings& settings) {
+  const nlohmann::json record = io::training_record_json(model.training);
   return {{"category", model.category},
           {"canonical", model.training.canonical},
           {"canonical_choice", report.canonical_choice},
           {"instances", model.training.instances},
           {"spaces", spaces_json(model)},
           {"label_agreement", report.label_agreement},
-          {"seam_weight",
-           model.training.seam_weight ? nlohmann::json(*model.training.seam_weight) : nlohmann::json()},
-          {"seam_weight_choice", model.training.seam_weight_choice},
+          {"seam_weight", record["seam_weight"]},
+          {"seam_weight_choice", record["seam_weight_choice"]},
+          {"seam_weight_trials", record["seam_weight_trials"]},
           {"settings", settings_json(core::training_option_values(settings))},
           {"seconds", report.seconds}};
 }

@@ -40,6 +40,9 @@ void CategoryModel::validate() const {
   if (!up.allFinite() || std::abs(up.norm() - 1.0) > 1e-6) fail("the up axis must be a finite unit vector");
   if (training.seam_weight && !(*training.seam_weight >= 0.0 && *training.seam_weight <= 1e6))
     fail("the seam weight must lie in [0, 1e6]");
+  for (const SeamWeightTrial& trial : training.seam_weight_trials)
+    if (!(trial.weight >= 0.0 && trial.weight <= 1e6) || !(trial.error >= 0.0) || !std::isfinite(trial.error))
+      fail("a seam weight trial needs a weight in [0, 1e6] and a finite error >= 0");
   if (!canonical_mesh.vertices.allFinite()) fail("mesh vertices are not finite");
   if (canonical_part.size() != m) fail("part labels do not match the canonical points");
   const int parts = static_cast<int>(part_names.size());

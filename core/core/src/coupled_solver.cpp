@@ -359,7 +359,7 @@ double solve_step(const std::vector<Part>& parts, const std::vector<Seam>& seams
                              nullptr, unknowns.offset_rotation[p].data(),
                              unknowns.offset_translation[p].data());
   }
-  add_seams(problem, seams, unknowns, settings.objective.seam_weight.value_or(kDefaultSeamWeight));
+  add_seams(problem, seams, unknowns, settings.objective.seam_weight.value());  // with_model_defaults set it
   constrain_pose(problem, rotation, scale, settings);
   return solve_inner(problem, settings);  // 7 + P (6 + q) unknowns
 }

@@ -1,6 +1,7 @@
 #include "seam_weight_choice.hpp"
 
 #include <algorithm>
+#include <numeric>
 #include <sstream>
 
 #include "partreg/core/parallel.hpp"
@@ -98,12 +99,6 @@ std::vector<std::vector<double>> errors_of(const CategoryModel& model, const Poi
   return errors;
 }
 
-double mean(const std::vector<double>& values) {
-  double sum = 0.0;
-  for (double value : values) sum += value;
-  return values.empty() ? 0.0 : sum / static_cast<double>(values.size());
-}
-
 }  // namespace
 
 std::vector<std::size_t> seam_weight_held_out(std::size_t instances, std::size_t canonical_index,
@@ -152,7 +147,7 @@ SeamWeightChoice choose_seam_weight(const CategoryModel& model,
   for (std::size_t c = 0; c < candidates.size(); ++c) {
     std::vector<double> all;
     for (const auto& instance : errors) all.insert(all.end(), instance[c].begin(), instance[c].end());
-    means.push_back(mean(all));
+    means.push_back(std::accumulate(all.begin(), all.end(), 0.0) / static_cast<double>(all.size()));
   }
   std::size_t best = static_cast<std::size_t>(std::min_element(means.begin(), means.end()) - means.begin());
   const auto standing = std::find(candidates.begin(), candidates.end(), kDefaultSeamWeight);
@@ -168,7 +163,9 @@ SeamWeightChoice choose_seam_weight(const CategoryModel& model,
   if (kept)
     text << "; the default " << kDefaultSeamWeight << " stays unless another is " << 100.0 * kClearMargin
          << "% lower";
-  return {candidates[best], text.str()};
+  std::vector<SeamWeightTrial> trials;
+  for (std::size_t c = 0; c < candidates.size(); ++c) trials.push_back({candidates[c], means[c]});
+  return {candidates[best], text.str(), trials};
 }
 
 }  // namespace partreg::core::detail

@@ -21,6 +21,7 @@ namespace partreg::core::detail {
 struct SeamWeightChoice {
   double weight = 0.0;
   std::string explanation;  ///< the candidates' mean errors, for the model's record and training's log
+  std::vector<SeamWeightTrial> trials;  ///< each candidate's mean error (empty when none was measured)
 };
 
 /// Instances held out when choosing among `candidates` for `instances` training instances: every one but the

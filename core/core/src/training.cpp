@@ -353,6 +353,7 @@ CategoryModel train_category(const std::string& category, const std::vector<Trai
                                    [&progress](const std::string& line) { progress.step(line); });
     record.seam_weight = choice.weight;
     record.seam_weight_choice = choice.explanation;
+    record.seam_weight_trials = choice.trials;
   }
   model.validate();
   out.seconds = seconds_since(start);

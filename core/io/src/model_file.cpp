@@ -83,22 +83,6 @@ class ArrayWriter {
   nlohmann::json table_ = nlohmann::json::array();
 };
 
-nlohmann::json training_json(const core::TrainingRecord& record) {
-  return {{"instances", record.instances},
-          {"canonical", record.canonical},
-          {"canonical_choice", record.canonical_choice},
-          {"canonical_points", record.canonical_points},
-          {"min_part_points", record.min_part_points},
-          {"seam_band", record.seam_band},
-          {"seam_weight", record.seam_weight ? nlohmann::json(*record.seam_weight) : nlohmann::json()},
-          {"seam_weight_choice", record.seam_weight_choice},
-          {"beta", record.beta},
-          {"lambda", record.lambda},
-          {"outlier_weight", record.outlier_weight},
-          {"latent_dimensions", record.latent_dimensions},
-          {"seed", record.seed}};
-}
-
 }  // namespace
 
 void write_model(const std::filesystem::path& path, const core::CategoryModel& model) {
@@ -134,7 +118,7 @@ void write_model(const std::filesystem::path& path, const core::CategoryModel& m
         {"scale", model.normalization.scale}}},
       {"part_names", model.part_names},
       {"up", {model.up.x(), model.up.y(), model.up.z()}},
-      {"training", training_json(model.training)},
+      {"training", training_record_json(model.training)},
       {"spaces", spaces},
       {"arrays", arrays.table()},
       {"blob_bytes", arrays.blob().size()},
@@ -271,6 +255,10 @@ core::TrainingRecord training_from_json(const nlohmann::json& json) {
   if (json.contains("seam_weight") && !json.at("seam_weight").is_null())
     record.seam_weight = json.at("seam_weight").get<double>();
   record.seam_weight_choice = json.value("seam_weight_choice", std::string());
+  if (json.contains("seam_weight_trials"))
+    for (const nlohmann::json& trial : json.at("seam_weight_trials"))
+      record.seam_weight_trials.push_back(
+          {trial.at("weight").get<double>(), trial.at("error").get<double>()});
   record.beta = json.at("beta").get<double>();
   record.lambda = json.at("lambda").get<double>();
   record.outlier_weight = json.at("outlier_weight").get<double>();
@@ -353,6 +341,26 @@ core::CategoryModel read_model(const std::filesystem::path& path) {
   } catch (const nlohmann::json::exception& e) {
     throw InputError("model file " + file + " has a malformed header: " + e.what());
   }
+}
+
+nlohmann::json training_record_json(const core::TrainingRecord& record) {
+  nlohmann::json trials = nlohmann::json::array();
+  for (const core::SeamWeightTrial& trial : record.seam_weight_trials)
+    trials.push_back({{"weight", trial.weight}, {"error", trial.error}});
+  return {{"instances", record.instances},
+          {"canonical", record.canonical},
+          {"canonical_choice", record.canonical_choice},
+          {"canonical_points", record.canonical_points},
+          {"min_part_points", record.min_part_points},
+          {"seam_band", record.seam_band},
+          {"seam_weight", record.seam_weight ? nlohmann::json(*record.seam_weight) : nlohmann::json()},
+          {"seam_weight_choice", record.seam_weight_choice},
+          {"seam_weight_trials", trials},
+          {"beta", record.beta},
+          {"lambda", record.lambda},
+          {"outlier_weight", record.outlier_weight},
+          {"latent_dimensions", record.latent_dimensions},
+          {"seed", record.seed}};
 }
 
 }  // namespace partreg::io

@@ -14,6 +14,12 @@
 
 namespace partreg::core {
 
+/// One seam weight tried when training chose the coupled variant's (TrainingRecord::seam_weight_trials).
+struct SeamWeightTrial {
+  double weight = 0.0;
+  double error = 0.0;  ///< mean symmetric RMS over the held-out instances' views, fraction of the diagonal
+};
+
 /// How a category model was trained (kept in the model file so results can be reproduced).
 struct TrainingRecord {
   std::vector<std::string> instances;  ///< training instance names, in training order
@@ -26,6 +32,8 @@ struct TrainingRecord {
   /// (unset in models without parts and older files: registration then uses kDefaultSeamWeight).
   std::optional<double> seam_weight;
   std::string seam_weight_choice;      ///< "given" or the figures it was chosen by (empty when none was)
+  std::vector<SeamWeightTrial>
+      seam_weight_trials;              ///< the candidates' errors it was chosen by (empty: given)
   double beta = 0.0;                   ///< CPD kernel width (normalised units)
   double lambda = 0.0;                 ///< CPD smoothness weight (unitless)
   double outlier_weight = 0.0;         ///< CPD w

@@ -11,6 +11,7 @@
 /// No language-specific serialisation: any language with a JSON parser can read it.
 
 #include <filesystem>
+#include <nlohmann/json.hpp>
 
 #include "partreg/core/category_model.hpp"
 
@@ -26,5 +27,8 @@ void write_model(const std::filesystem::path& path, const core::CategoryModel& m
 /// Reads a model. Throws InputError with one clear line for a missing file, a file that is not a partreg
 /// model, another format version, a truncated file, or an array whose checksum does not match (corruption).
 core::CategoryModel read_model(const std::filesystem::path& path);
+
+/// The model file's training block (docs/model_format.md), which `info` and `train --json` print as well.
+nlohmann::json training_record_json(const core::TrainingRecord& record);
 
 }  // namespace partreg::io
