@@ -64,6 +64,9 @@ void run(benchmark::State& state, const std::string& folder, partreg::core::Vari
   state.counters["fit_of_diagonal"] = result.fit.mean_normalised;
   if (settings.refinement.enabled) state.counters["refine_ms"] = 1e3 * result.refinement.seconds;
   state.counters["last_fit_steps"] = result.fits.back().iterations;  // outer steps of the last space fitted
+  if (variant == partreg::core::Variant::coupled)  // training chose it for the benchmark's model
+    state.counters["seam_weight"] =
+        *partreg::core::with_model_defaults(settings, setup->model).objective.seam_weight;
 }
 
 // One start: one yaw and no tilt (the single-start path).
