@@ -80,6 +80,32 @@ eval::EvalRow rms_row(const std::string& method, int view, double rms, double eq
   return r;
 }
 
+TEST(EvalReport, TheHeadlineFigureShowsWithItsForwardAndReverseHalves) {
+  // Diagonal 0.5. Full views: forward 0.02 / reverse 0.04 (symmetric 0.03) and 0.04 / 0.06 (0.05): means
+  // 0.03 / 0.05, symmetric 0.04. A perturbed row stays out.
+  const auto halves_row = [](double forward, double reverse, eval::Perturbation kind) {
+    eval::EvalRow r = row("coupled", -1, kind, kind == eval::Perturbation::none ? -1 : 0, 0.0);
+    r.diagonal = r.errors.diagonal = 0.5;
+    r.errors.eq5 = std::pow(forward * 0.5, 2), r.errors.reverse_eq5 = std::pow(reverse * 0.5, 2);
+    r.errors.eq5_per_diagonal2 = forward * forward;
+    r.errors.symmetric_rms_per_diagonal = 0.5 * (forward + reverse);
+    return r;
+  };
+  const std::vector<eval::EvalRow> rows = {halves_row(0.02, 0.04, eval::Perturbation::none),
+                                           halves_row(0.04, 0.06, eval::Perturbation::none),
+                                           halves_row(0.5, 0.5, eval::Perturbation::noise)};
+  EXPECT_DOUBLE_EQ(rows[0].errors.forward_rms_per_diagonal(), 0.02);
+  EXPECT_DOUBLE_EQ(rows[0].errors.reverse_rms_per_diagonal(), 0.04);
+  testing::TempDir dir;
+  eval::write_rows_csv(dir / "r.csv", rows);
+  const std::string tables = eval::markdown_report(eval::read_rows_csv(dir / "r.csv"));
+  EXPECT_NE(tables.find("full views (forward / reverse half):\n\n| category | coupled |\n|---|---|\n"
+                        "| mugs | 4.000 (3.00 / 5.00) |"),
+            std::string::npos)
+      << tables;
+  EXPECT_EQ(tables.find("partial views (forward / reverse half)"), std::string::npos) << tables;  // none
+}
+
 TEST(EvalReport, BaselineTableShowsTheMeansAndRatiosOfTheRowsAndLeavesTheEq5TablesAlone) {
   // Full views: holistic 0.02 and 0.03 (mean 0.025), the oracle 0.04 and 0.06 (mean 0.05): ratio 0.50.
   // Partial views: holistic 0.045 against the oracle's 0.03: ratio 1.50.

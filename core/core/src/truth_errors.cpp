@@ -94,7 +94,7 @@ TruthErrors measure_against_truth(const Points& deformed, const Eigen::VectorXi&
   errors.eq5_per_diagonal2 = errors.eq5 / diagonal2;
   errors.reverse_eq5 = reverse.mean();
   errors.symmetric_rms_per_diagonal =
-      0.5 * (std::sqrt(errors.eq5) + std::sqrt(errors.reverse_eq5)) / diagonal;
+      0.5 * (errors.forward_rms_per_diagonal() + errors.reverse_rms_per_diagonal());
   errors.chamfer = 0.5 * (forward.cwiseSqrt().mean() + reverse.cwiseSqrt().mean());
   errors.chamfer_per_diagonal = errors.chamfer / diagonal;
   errors.part_eq5_per_diagonal2 = per_part_mean(forward, part, part_names, diagonal2);

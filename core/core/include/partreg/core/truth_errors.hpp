@@ -7,6 +7,7 @@
 /// the instance's own frame (the evaluation's perturbations move the truth rigidly but do not change D).
 /// Names carry their units: `_per_diagonal` is a length over D, `_per_diagonal2` a squared length over D^2.
 
+#include <cmath>
 #include <map>
 #include <optional>
 #include <string>
@@ -36,6 +37,12 @@ struct TruthErrors {
   std::map<std::string, double> own_part_rms_per_diagonal;
   /// The mean of own_part_rms_per_diagonal over the parts (each part counts once, whatever its size).
   std::optional<double> own_part_rms_mean_per_diagonal;
+
+  /// The headline figure's halves, / D (symmetric_rms_per_diagonal is their mean): how close the deformed
+  /// points lie to the truth (sqrt Eq. 5), and how closely they cover it. A part that leaves its place for
+  /// observed surface lowers the forward half only.
+  double forward_rms_per_diagonal() const { return std::sqrt(eq5) / diagonal; }
+  double reverse_rms_per_diagonal() const { return std::sqrt(reverse_eq5) / diagonal; }
 };
 
 /// The paper's Eq. 5: mean over `deformed` of the squared distance to the closest point of `truth` (squared
