@@ -432,33 +432,28 @@ void symmetric_tables(std::ostringstream& out, const std::vector<EvalRow>& rows)
     bool any = false;
     for (const std::string& category : categories_of(rows)) {
       table << "| " << category << " |";
-      const auto clean = [&](const std::string& variant) {
-        return [&, variant](const EvalRow& r) {
-          return r.category == category && r.variant == variant && is_partial(r) == partial &&
-                 r.perturbation == Perturbation::none;
-        };
-      };
       for (const std::string& variant : variants) {
-        const double symmetric = mean_of(
-            rows, clean(variant), [](const EvalRow& r) { return r.errors.symmetric_rms_per_diagonal; });
+        const auto mean = [&](auto value) {
+          return mean_of(
+              rows,
+              [&](const EvalRow& r) {
+                return r.category == category && r.variant == variant && is_partial(r) == partial &&
+                       r.perturbation == Perturbation::none;
+              },
+              value);
+        };
+        const double symmetric = mean([](const EvalRow& r) { return r.errors.symmetric_rms_per_diagonal; });
+        const double forward = mean([](const EvalRow& r) { return r.errors.forward_rms_per_diagonal(); });
+        const double reverse = mean([](const EvalRow& r) { return r.errors.reverse_rms_per_diagonal(); });
         any = any || std::isfinite(symmetric);
-        table << ' ' << cell(symmetric, 100, 3) << " ("
-              << cell(mean_of(rows, clean(variant),
-                              [](const EvalRow& r) { return r.errors.forward_rms_per_diagonal(); }),
-                      100, 2)
-              << " / "
-              << cell(mean_of(rows, clean(variant),
-                              [](const EvalRow& r) { return r.errors.reverse_rms_per_diagonal(); }),
-                      100, 2)
-              << ") |";
+        table << ' ' << cell(symmetric, 100, 3) << " (" << cell(forward, 100, 2) << " / "
+              << cell(reverse, 100, 2) << ") |";
       }
       table << "\n";
     }
     if (!any) continue;
-    out << "\nSymmetric RMS distance to the whole true instance (the headline figure, truth_errors.hpp), % "
-           "of the "
-           "diagonal, "
-        << (partial ? "partial views" : "full views") << " (forward / reverse half):\n\n";
+    out << "\nSymmetric RMS distance to the whole true instance (the headline figure, truth_errors.hpp), "
+        << "% of the diagonal, " << (partial ? "partial" : "full") << " views (forward / reverse half):\n\n";
     header_row(out, "category", variants);
     out << table.str();
   }

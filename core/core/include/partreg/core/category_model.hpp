@@ -32,8 +32,8 @@ struct TrainingRecord {
   /// (unset in models without parts and older files: registration then uses kDefaultSeamWeight).
   std::optional<double> seam_weight;
   std::string seam_weight_choice;      ///< "given" or the figures it was chosen by (empty when none was)
-  std::vector<SeamWeightTrial>
-      seam_weight_trials;              ///< the candidates' errors it was chosen by (empty: given)
+  /// The candidates' errors it was chosen by (empty when it was given).
+  std::vector<SeamWeightTrial> seam_weight_trials;
   double beta = 0.0;                   ///< CPD kernel width (normalised units)
   double lambda = 0.0;                 ///< CPD smoothness weight (unitless)
   double outlier_weight = 0.0;         ///< CPD w
