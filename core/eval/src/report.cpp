@@ -105,6 +105,20 @@ double mean_of(const std::vector<EvalRow>& rows, Keep keep, Value value) {
   return count > 0 ? sum / count : std::numeric_limits<double>::quiet_NaN();
 }
 
+// Mean of `value` over the clean observations of one category and method, full or partial views: what
+// every table of clean figures shows in a cell.
+template <class Value>
+double clean_mean(const std::vector<EvalRow>& rows, const std::string& category, const std::string& method,
+                  bool partial, Value value) {
+  return mean_of(
+      rows,
+      [&](const EvalRow& r) {
+        return r.category == category && r.variant == method && is_partial(r) == partial &&
+               r.perturbation == Perturbation::none;
+      },
+      value);
+}
+
 std::string cell(double value, double factor = 1e4, int precision = 2) {
   if (!std::isfinite(value)) return "-";
   std::ostringstream out;
@@ -125,16 +139,7 @@ void category_table(std::ostringstream& out, const std::vector<EvalRow>& rows, c
   for (const std::string& category : categories_of(rows)) {
     out << "| " << category << " |";
     for (const std::string& variant : variants)
-      out << ' '
-          << cell(mean_of(
-                      rows,
-                      [&](const EvalRow& r) {
-                        return r.category == category && r.variant == variant && is_partial(r) == partial &&
-                               r.perturbation == Perturbation::none;
-                      },
-                      value),
-                  factor, precision)
-          << " |";
+      out << ' ' << cell(clean_mean(rows, category, variant, partial, value), factor, precision) << " |";
     out << "\n";
   }
 }
@@ -251,13 +256,8 @@ double swept_clean_eq5_per_diagonal2(const std::vector<EvalRow>& rows, const std
 
 double mean_symmetric_rms_per_diagonal(const std::vector<EvalRow>& rows, const std::string& category,
                                        const std::string& method, bool partial) {
-  return mean_of(
-      rows,
-      [&](const EvalRow& r) {
-        return r.category == category && r.variant == method && is_partial(r) == partial &&
-               r.perturbation == Perturbation::none;
-      },
-      [](const EvalRow& r) { return r.errors.symmetric_rms_per_diagonal; });
+  return clean_mean(rows, category, method, partial,
+                    [](const EvalRow& r) { return r.errors.symmetric_rms_per_diagonal; });
 }
 
 namespace {
@@ -301,13 +301,9 @@ void part_tables(std::ostringstream& out, const std::vector<EvalRow>& rows) {
       for (const std::string& part : parts) {
         out << "| " << part << " |";
         for (const std::string& variant : variants) {
-          const double mean = mean_of(
-              rows,
-              [&](const EvalRow& r) {
-                return r.category == category && r.variant == variant && is_partial(r) == partial &&
-                       r.perturbation == Perturbation::none;
-              },
-              [&](const EvalRow& r) { return part_figure(r.errors.part_eq5_per_diagonal2, part); });
+          const double mean = clean_mean(rows, category, variant, partial, [&](const EvalRow& r) {
+            return part_figure(r.errors.part_eq5_per_diagonal2, part);
+          });
           out << ' ' << cell(mean) << " |";
         }
         out << "\n";
@@ -325,12 +321,6 @@ void own_part_tables(std::ostringstream& out, const std::vector<EvalRow>& rows) 
         parts_in(rows, category, &core::TruthErrors::own_part_rms_per_diagonal);
     if (parts.empty()) continue;
     for (bool partial : {false, true}) {
-      const auto keep = [&](const std::string& variant) {
-        return [&, variant](const EvalRow& r) {
-          return r.category == category && r.variant == variant && is_partial(r) == partial &&
-                 r.perturbation == Perturbation::none;
-        };
-      };
       out << "\nEach part against the same part of the truth, " << category << ", "
           << (partial ? "partial views" : "full views")
           << ": symmetric RMS, % of the diagonal (truth_errors.hpp, own_part_rms_per_diagonal):\n\n";
@@ -339,10 +329,10 @@ void own_part_tables(std::ostringstream& out, const std::vector<EvalRow>& rows) 
         out << "| " << part << " |";
         for (const std::string& variant : variants)
           out << ' '
-              << cell(mean_of(rows, keep(variant),
-                              [&](const EvalRow& r) {
-                                return part_figure(r.errors.own_part_rms_per_diagonal, part);
-                              }),
+              << cell(clean_mean(rows, category, variant, partial,
+                                 [&](const EvalRow& r) {
+                                   return part_figure(r.errors.own_part_rms_per_diagonal, part);
+                                 }),
                       100)
               << " |";
         out << "\n";
@@ -350,10 +340,10 @@ void own_part_tables(std::ostringstream& out, const std::vector<EvalRow>& rows) 
       out << "| mean over parts |";
       for (const std::string& variant : variants)
         out << ' '
-            << cell(mean_of(rows, keep(variant),
-                            [](const EvalRow& r) {
-                              return r.errors.own_part_rms_mean_per_diagonal.value_or(std::nan(""));
-                            }),
+            << cell(clean_mean(rows, category, variant, partial,
+                               [](const EvalRow& r) {
+                                 return r.errors.own_part_rms_mean_per_diagonal.value_or(std::nan(""));
+                               }),
                     100)
             << " |";
       out << "\n";
@@ -433,16 +423,8 @@ void symmetric_tables(std::ostringstream& out, const std::vector<EvalRow>& rows)
     for (const std::string& category : categories_of(rows)) {
       table << "| " << category << " |";
       for (const std::string& variant : variants) {
-        const auto mean = [&](auto value) {
-          return mean_of(
-              rows,
-              [&](const EvalRow& r) {
-                return r.category == category && r.variant == variant && is_partial(r) == partial &&
-                       r.perturbation == Perturbation::none;
-              },
-              value);
-        };
-        const double symmetric = mean([](const EvalRow& r) { return r.errors.symmetric_rms_per_diagonal; });
+        const auto mean = [&](auto value) { return clean_mean(rows, category, variant, partial, value); };
+        const double symmetric = mean_symmetric_rms_per_diagonal(rows, category, variant, partial);
         const double forward = mean([](const EvalRow& r) { return r.errors.forward_rms_per_diagonal(); });
         const double reverse = mean([](const EvalRow& r) { return r.errors.reverse_rms_per_diagonal(); });
         any = any || std::isfinite(symmetric);
