@@ -2,6 +2,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <map>
 #include <sstream>
@@ -103,17 +104,21 @@ TEST(Training, KeepsEachInstancesFieldAndLatentsAndReportsMonotoneProgressToTheE
   train_category("mugs", instances, {"body", "handle"}, settings, nullptr,
                  [&](const std::string& line) { lines.push_back(line); });
 
-  // K (1 + P) steps for 4 instances and 2 parts, and one per instance held out to choose the seam weight (all
-  // but the canonical), counted up by one, ending at 1; the line callback gets the same lines.
-  ASSERT_EQ(steps.size(), 15u);
+  // K (1 + P) steps for 4 instances and 2 parts, one per instance held out to choose the seam weight and one
+  // per label CPD (both all but the canonical), counted up by one, ending at 1; the line callback gets the
+  // same lines.
+  ASSERT_EQ(steps.size(), 18u);
   for (std::size_t i = 0; i < steps.size(); ++i) {
-    EXPECT_EQ(steps[i].total, 15u);
+    EXPECT_EQ(steps[i].total, 18u);
     EXPECT_EQ(steps[i].done, i + 1);
     if (i > 0) EXPECT_GT(steps[i].fraction(), steps[i - 1].fraction());
   }
   EXPECT_EQ(steps.back().fraction(), 1.0);
   ASSERT_EQ(lines.size(), steps.size());
   EXPECT_EQ(lines.front().rfind("cpd holistic", 0), 0u) << lines.front();
+  EXPECT_EQ(std::count_if(lines.begin(), lines.end(),
+                          [](const std::string& line) { return line.rfind("cpd labels", 0) == 0; }),
+            3);
 
   // The holistic field of each instance is kept; its latent is the projection of its displacement G W_i.
   ASSERT_EQ(model.training_weights.rows(), 4);

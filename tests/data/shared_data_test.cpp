@@ -135,11 +135,25 @@ TEST(SharedData, KettleLabelsPropagateToEveryOtherKettle) {
   core::TrainingReport report;
   const auto model = core::train_category(dataset.name, dataset.instances, dataset.part_names, {}, &report);
   ASSERT_EQ(report.label_agreement.size(), dataset.instances.size() - 1);  // every kettle but the canonical
+  double mean = 0.0;
+  int with_shared_surface = 0;
   for (const auto& [instance, agreement] : report.label_agreement) {
-    // Measured 88-93% (docs/training.md); the issue's 95% is not reached yet: this guards the current level.
-    EXPECT_GT(agreement.at("all"), 0.85) << instance;
-    for (const auto& [part, fraction] : agreement) EXPECT_GT(fraction, 0.6) << instance << " " << part;
+    // Measured 93.9-98.1%, 96.4% on average, where another part lying on a point's own (a lid on its body's
+    // top) may name it; 89.5-97.9% (94.5%) through the holistic CPD's finer fit (docs/training.md). The issue
+    // asks 95%.
+    EXPECT_GT(agreement.by_surface.at("all"), 0.92) << instance;
+    for (const auto& [part, fraction] : agreement.by_surface)
+      EXPECT_GT(fraction, 0.75) << instance << " " << part;
+    EXPECT_GE(agreement.by_surface.at("all"), agreement.by_sampled_part.at("all")) << instance;
+    if (agreement.shared_surface > 0.05) {
+      ++with_shared_surface;
+      // Where a lid lies on the body a point's sampled part is a coin's toss: the figures must differ there.
+      EXPECT_GT(agreement.by_surface.at("all"), agreement.by_sampled_part.at("all") + 0.03) << instance;
+    }
+    mean += agreement.by_surface.at("all") / static_cast<double>(report.label_agreement.size());
   }
+  EXPECT_GT(mean, 0.95);
+  EXPECT_GE(with_shared_surface, 2);  // measured 10-16% of kettles 3, 4 and 5 (0.6% of kettle 1)
   EXPECT_EQ(model.spaces.size(), 5u);
 
   // The part spaces agree at their seams on the shapes they were trained on (core/core/src/seam_agreement.hpp);

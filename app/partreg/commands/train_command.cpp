@@ -29,6 +29,15 @@ struct TrainOptions {
   core::TrainingSettings settings;
 };
 
+nlohmann::json label_agreement_json(const core::TrainingReport& report) {
+  nlohmann::json json = nlohmann::json::object();
+  for (const auto& [instance, agreement] : report.label_agreement)
+    json[instance] = {{"by_surface", agreement.by_surface},
+                      {"by_sampled_part", agreement.by_sampled_part},
+                      {"shared_surface", agreement.shared_surface}};
+  return json;
+}
+
 nlohmann::json summary_json(const core::CategoryModel& model, const core::TrainingReport& report,
                             const core::TrainingSettings& settings) {
   const nlohmann::json record = io::training_record_json(model.training);
@@ -37,7 +46,7 @@ nlohmann::json summary_json(const core::CategoryModel& model, const core::Traini
           {"canonical_choice", report.canonical_choice},
           {"instances", model.training.instances},
           {"spaces", spaces_json(model)},
-          {"label_agreement", report.label_agreement},
+          {"label_agreement", label_agreement_json(report)},
           {"seam_weight", record["seam_weight"]},
           {"seam_weight_choice", record["seam_weight_choice"]},
           {"seam_weight_trials", record["seam_weight_trials"]},
@@ -54,11 +63,14 @@ void print_summary(const core::CategoryModel& model, const core::TrainingReport&
       std::cerr << ' ' << std::round(1000 * fraction) / 10 << '%';
     std::cerr << '\n';
   }
-  for (const auto& [instance, parts] : report.label_agreement) {
+  const auto percent = [](double fraction) { return std::round(1000 * fraction) / 10; };
+  for (const auto& [instance, agreement] : report.label_agreement) {
     std::cerr << "label propagation onto " << instance << ":";
-    for (const auto& [part, fraction] : parts)
-      std::cerr << ' ' << part << ' ' << std::round(1000 * fraction) / 10 << '%';
-    std::cerr << '\n';
+    for (const auto& [part, fraction] : agreement.by_surface)
+      std::cerr << ' ' << part << ' ' << percent(fraction) << '%';
+    std::cerr << " (" << percent(agreement.by_sampled_part.at("all"))
+              << "% by the part each point was sampled from; " << percent(agreement.shared_surface)
+              << "% of its points on two parts' surfaces)\n";
   }
   if (model.training.seam_weight)
     std::cerr << "coupled seam weight " << *model.training.seam_weight << " ("

@@ -3,6 +3,7 @@
 #include <chrono>
 #include <sstream>
 
+#include "part_surfaces.hpp"
 #include "partreg/core/errors.hpp"
 #include "partreg/core/kdtree.hpp"
 #include "partreg/core/sampling.hpp"
@@ -77,21 +78,6 @@ CpdRun register_onto(const Points& canonical, const Points& target, const Traini
   return {result.weights, result.moved};
 }
 
-std::map<std::string, double> agreement(const Eigen::VectorXi& truth, const Eigen::VectorXi& propagated,
-                                        const std::vector<std::string>& part_names) {
-  std::map<std::string, double> result;
-  for (int part = -1; part < static_cast<int>(part_names.size()); ++part) {
-    int total = 0, same = 0;
-    for (Eigen::Index i = 0; i < truth.size(); ++i) {
-      if (part >= 0 && truth[i] != part) continue;
-      ++total;
-      same += truth[i] == propagated[i];
-    }
-    result[part < 0 ? "all" : part_names[part]] = total ? static_cast<double>(same) / total : 0.0;
-  }
-  return result;
-}
-
 }  // namespace
 
 std::size_t choose_canonical(const std::vector<TrainingInstance>& instances, std::string* explanation) {
@@ -144,6 +130,54 @@ Target make_target(const TrainingInstance& instance, const Normalization& normal
   Target target{select_rows(normalised, rows), Eigen::VectorXi()};
   if (instance.part.size() > 0) target.part = instance.part(rows);
   return target;
+}
+
+bool separate_label_fit(const TrainingSettings& settings) {
+  return settings.label_beta > 0.0 && settings.label_beta != settings.beta;
+}
+
+// The canonical registered onto `target` by the stiffer CPD that carries part labels (`label_beta`): a field
+// of the holistic space's width slides points along the surface and with them the part boundaries.
+Points label_fit(const Points& canonical, const Points& target, const TrainingSettings& settings,
+                 const std::string& instance, TrainingReport& report, StepCounter& progress) {
+  TrainingSettings stiffer = settings;
+  stiffer.beta = settings.label_beta;
+  return register_onto(canonical, target, stiffer, instance, "labels", report, progress).moved;
+}
+
+// A share of `part`'s points (every point's for part -1) for which `agrees` holds.
+template <typename Agrees>
+double share(const Eigen::VectorXi& truth, int part, Agrees agrees) {
+  int total = 0, agreeing = 0;
+  for (Eigen::Index i = 0; i < truth.size(); ++i) {
+    if (part >= 0 && truth[i] != part) continue;
+    ++total;
+    agreeing += agrees(i);
+  }
+  return total ? static_cast<double>(agreeing) / total : 0.0;
+}
+
+// `propagated` labels of the normalised `target` against its own (`target.part`) and against every part whose
+// surface in `instance`'s mesh passes through each point.
+TrainingReport::LabelAgreement agreement(const Target& target, const Eigen::VectorXi& propagated,
+                                         const TrainingInstance& instance, const Normalization& normalization,
+                                         const std::vector<std::string>& part_names) {
+  const int parts = static_cast<int>(part_names.size());
+  const Mesh mesh{normalization.apply(instance.mesh.vertices), instance.mesh.faces, {}};
+  Eigen::Array<bool, Eigen::Dynamic, Eigen::Dynamic> through = detail::parts_through_points(
+      mesh, instance.mesh_vertex_part, parts, target.points, 0.001 * bounding_box_diagonal(target.points));
+  for (Eigen::Index i = 0; i < target.points.rows(); ++i)
+    through(i, target.part[i]) = true;  // a cloud has no mesh
+  TrainingReport::LabelAgreement result;
+  for (int part = -1; part < parts; ++part) {
+    const std::string name = part < 0 ? "all" : part_names[static_cast<std::size_t>(part)];
+    result.by_surface[name] =
+        share(target.part, part, [&](Eigen::Index i) { return through(i, propagated[i]); });
+    result.by_sampled_part[name] =
+        share(target.part, part, [&](Eigen::Index i) { return propagated[i] == target.part[i]; });
+  }
+  result.shared_surface = (through.rowwise().count() > 1).cast<double>().mean();
+  return result;
 }
 
 std::size_t find_canonical(const std::vector<TrainingInstance>& instances, const TrainingSettings& settings,
@@ -264,7 +298,9 @@ CategoryModel train_category(const std::string& category, const std::vector<Trai
           ? 0
           : detail::seam_weight_held_out(instances.size(), canonical_index, settings.seam_weight_candidates)
                 .size();
-  StepCounter progress(instances.size() * static_cast<std::size_t>(spaces) + held_out, steps);
+  const std::size_t label_fits =
+      part_names.empty() || !separate_label_fit(settings) ? 0 : instances.size() - 1;
+  StepCounter progress(instances.size() * static_cast<std::size_t>(spaces) + held_out + label_fits, steps);
   CategoryModel model;
   model.category = category;
   model.part_names = part_names;
@@ -283,9 +319,14 @@ CategoryModel train_category(const std::string& category, const std::vector<Trai
                                        "holistic", out, progress);
       holistic_weights.push_back(run.weights);
       if (model.has_parts()) {
-        const Eigen::VectorXi propagated = propagate_labels(run.moved, model.canonical_part, target.points);
+        const Points carrier =
+            separate_label_fit(settings)
+                ? label_fit(model.canonical, target.points, settings, instances[i].name, out, progress)
+                : run.moved;
+        const Eigen::VectorXi propagated = propagate_labels(carrier, model.canonical_part, target.points);
         if (target.part.size() > 0)
-          out.label_agreement[instances[i].name] = agreement(target.part, propagated, part_names);
+          out.label_agreement[instances[i].name] =
+              agreement(target, propagated, instances[i], model.normalization, part_names);
         else
           target.part = propagated;
       }

@@ -70,6 +70,11 @@ std::vector<TrainingOption> make_options() {
       Make::real(
           "lambda", "CPD smoothness weight", 1e-6, 1e6, [](auto& s) -> auto& { return s.lambda; }),
       Make::real(
+          "label-beta",
+          "kernel width (normalised length) of the CPD that carries part labels to the instances (0: the "
+          "holistic CPD's)",
+          0.0, 10.0, [](auto& s) -> auto& { return s.label_beta; }),
+      Make::real(
           "outlier-weight", "CPD's outlier share w (clean sampled surfaces have few outliers)", 0.0, 0.99,
           [](auto& s) -> auto& { return s.outlier_weight; }),
       Make::whole(

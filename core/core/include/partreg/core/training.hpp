@@ -48,6 +48,10 @@ struct TrainingSettings {
   int latent_dimensions = 5;  ///< q per space (clamped to K - 1 for K training instances)
   double beta = 0.3;          ///< CPD kernel width (normalised length); see docs/training.md for the choice
   double lambda = 3.0;        ///< CPD smoothness weight (unitless)
+  /// Kernel width (normalised length) of the CPD whose fit carries part labels to the instances: a wider
+  /// field than the space's keeps the part boundaries in place (docs/training.md, "Label agreement"). 0 or
+  /// `beta`: the holistic CPD's own fit, with no CPD of its own.
+  double label_beta = 0.7;
   double outlier_weight = 0.05;          ///< CPD w: clean sampled surfaces have few outliers
   int max_iterations = 150;              ///< CPD iteration cap per registration
   std::optional<std::string> canonical;  ///< instance name to use as canonical; automatic when absent
@@ -67,9 +71,18 @@ struct TrainingReport {
     double mean_fit = 0.0;  ///< mean distance from the registered canonical to the instance (normalised)
   };
   std::vector<Registration> registrations;
-  /// Per instance with its own parts: share of its points whose propagated label equals its own, per part
-  /// name and "all".
-  std::map<std::string, std::map<std::string, double>> label_agreement;
+  /// Label propagation onto an instance with its own parts, against them; shares of its points per part name
+  /// (the part each point was sampled from) and "all".
+  struct LabelAgreement {
+    /// Propagated label is a part whose surface passes through the point (within 0.1% of the instance's
+    /// diagonal): its own part's, or another part's lying on it, as the kettles' lids lie on their bodies'
+    /// tops, where a point's position cannot tell which file it was drawn from. The figure training reports.
+    std::map<std::string, double> by_surface;
+    /// Propagated label equals the part the point was sampled from.
+    std::map<std::string, double> by_sampled_part;
+    double shared_surface = 0.0;  ///< share of the points on more than one part's surface
+  };
+  std::map<std::string, LabelAgreement> label_agreement;  ///< per instance name
   std::string canonical_choice;  ///< how the canonical was chosen, with the figures behind the choice
   double seconds = 0.0;
 };
@@ -78,7 +91,8 @@ struct TrainingReport {
 using ProgressCallback = std::function<void(const std::string&)>;
 
 /// Training's progress (core/progress.hpp) has a known end: K (1 + P) equal steps for K instances and P
-/// parts, one CPD per instance other than the canonical and per space, and one PCA-EM per space. Each
+/// parts, one CPD per instance other than the canonical and per space, and one PCA-EM per space; with parts,
+/// one more per held-out instance of the seam weight's choice and per label CPD (docs/training.md). Each
 /// report's line is what that step did (as ProgressCallback gets it); the last report has done == total.
 using TrainingProgress = Progress;
 
