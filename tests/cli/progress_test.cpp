@@ -60,9 +60,9 @@ TEST_F(Progress, PipedTrainWritesOneLinePerCpd) {
   const std::size_t instances = summary["instances"].size(), spaces = summary["spaces"].size();
   ASSERT_EQ(instances, 4u);
   ASSERT_EQ(spaces, 3u);  // holistic, body, handle
-  // K (1 + P) steps: a CPD per instance but the canonical and per space, and a PCA-EM per space; then one per
-  // instance held out to choose the seam weight (every one but the canonical).
-  const std::size_t steps = instances * spaces + instances - 1;
+  // K (1 + P) steps: a CPD per instance but the canonical and per space, and a PCA-EM per space; one label CPD
+  // and one held out to choose the seam weight per instance but the canonical.
+  const std::size_t steps = instances * spaces + 2 * (instances - 1);
   std::size_t cpd_lines = 0, space_lines = 0, seam_lines = 0;
   for (const std::string& line : lines_of(train.err)) {
     if (line.find("] cpd ") != std::string::npos) {
@@ -76,7 +76,7 @@ TEST_F(Progress, PipedTrainWritesOneLinePerCpd) {
     if (line.find("] seam weight: held out") != std::string::npos) ++seam_lines;
     EXPECT_EQ(line.find('\r'), std::string::npos) << "a bar drawn into a log: " << line;
   }
-  EXPECT_EQ(cpd_lines, (instances - 1) * spaces) << train.err;
+  EXPECT_EQ(cpd_lines, (instances - 1) * (spaces + 1)) << train.err;
   EXPECT_EQ(space_lines, spaces) << train.err;
   EXPECT_EQ(seam_lines, instances - 1) << train.err;
   EXPECT_NE(train.err.find("coupled seam weight "), std::string::npos) << train.err;

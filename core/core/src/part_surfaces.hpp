@@ -1,9 +1,9 @@
 #pragma once
 // Which parts' surfaces pass through a point (internal to partreg_core's training).
 //
-// Part files need not meet edge to edge: the kettles' lids are shells lying on their bodies' tops, so 14-27%
-// of a kettle's surface is two parts' surfaces at once (50-88% of each lid lies within 0.5% of the diagonal
-// of its body, kettles 2-5). A point sampled there carries the label of the file it was drawn from, which its
+// Part files need not meet edge to edge: the kettles' lids are shells lying on their bodies' tops, so 20-29%
+// of kettles 2-5's surface lies within 1% of the diagonal of another part's (50-88% of each lid within 0.5% of
+// its body). A point sampled there carries the label of the file it was drawn from, which its
 // position cannot tell; label propagation is judged against every part whose surface passes through it.
 
 #include <Eigen/Core>

@@ -167,7 +167,7 @@ TrainingReport::LabelAgreement agreement(const Target& target, const Eigen::Vect
   Eigen::Array<bool, Eigen::Dynamic, Eigen::Dynamic> through = detail::parts_through_points(
       mesh, instance.mesh_vertex_part, parts, target.points, 0.001 * bounding_box_diagonal(target.points));
   for (Eigen::Index i = 0; i < target.points.rows(); ++i)
-    through(i, target.part[i]) = true;  // a cloud has no mesh
+    through(i, target.part[i]) = true;  // its own part, whatever the mesh (a cloud has none)
   TrainingReport::LabelAgreement result;
   for (int part = -1; part < parts; ++part) {
     const std::string name = part < 0 ? "all" : part_names[static_cast<std::size_t>(part)];
