@@ -99,10 +99,15 @@ TEST(Training, KeepsEachInstancesFieldAndLatentsAndReportsMonotoneProgressToTheE
   settings.latent_dimensions = 3;  // = K - 1: each instance's displacement lies inside the space
   std::vector<TrainingProgress> steps;
   std::vector<std::string> lines;
-  const CategoryModel model = train_category("mugs", instances, {"body", "handle"}, settings, nullptr,
+  TrainingReport report;  // asked for, so the instances' own labels are measured against propagated ones
+  const CategoryModel model = train_category("mugs", instances, {"body", "handle"}, settings, &report,
                                              [&](const TrainingProgress& step) { steps.push_back(step); });
-  train_category("mugs", instances, {"body", "handle"}, settings, nullptr,
+  train_category("mugs", instances, {"body", "handle"}, settings, &report,
                  [&](const std::string& line) { lines.push_back(line); });
+  std::size_t unreported = 0;
+  train_category("mugs", instances, {"body", "handle"}, settings, nullptr,
+                 [&](const TrainingProgress& step) { unreported = step.total; });
+  EXPECT_EQ(unreported, 15u);  // no report: instances with their own labels need no label CPD
 
   // K (1 + P) steps for 4 instances and 2 parts, one per instance held out to choose the seam weight and one
   // per label CPD (both all but the canonical), counted up by one, ending at 1; the line callback gets the

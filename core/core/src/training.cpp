@@ -298,8 +298,14 @@ CategoryModel train_category(const std::string& category, const std::vector<Trai
           ? 0
           : detail::seam_weight_held_out(instances.size(), canonical_index, settings.seam_weight_candidates)
                 .size();
-  const std::size_t label_fits =
-      part_names.empty() || !separate_label_fit(settings) ? 0 : instances.size() - 1;
+  // Labels are carried to each instance without its own, and to one with its own only to measure the
+  // agreement for a caller that asked for the report.
+  const auto carries_labels = [&](std::size_t i) {
+    return !part_names.empty() && i != canonical_index && (report || instances[i].part.size() == 0);
+  };
+  std::size_t label_fits = 0;
+  for (std::size_t i = 0; i < instances.size(); ++i)
+    label_fits += carries_labels(i) && separate_label_fit(settings);
   StepCounter progress(instances.size() * static_cast<std::size_t>(spaces) + held_out + label_fits, steps);
   CategoryModel model;
   model.category = category;
@@ -318,7 +324,7 @@ CategoryModel train_category(const std::string& category, const std::vector<Trai
       const CpdRun run = register_onto(model.canonical, target.points, settings, instances[i].name,
                                        "holistic", out, progress);
       holistic_weights.push_back(run.weights);
-      if (model.has_parts()) {
+      if (carries_labels(i)) {
         const Points carrier =
             separate_label_fit(settings)
                 ? label_fit(model.canonical, target.points, settings, instances[i].name, out, progress)

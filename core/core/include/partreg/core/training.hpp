@@ -92,7 +92,8 @@ using ProgressCallback = std::function<void(const std::string&)>;
 
 /// Training's progress (core/progress.hpp) has a known end: K (1 + P) equal steps for K instances and P
 /// parts, one CPD per instance other than the canonical and per space, and one PCA-EM per space; with parts,
-/// one more per held-out instance of the seam weight's choice and per label CPD (docs/training.md). Each
+/// one more per held-out instance of the seam weight's choice and per label CPD (an instance without its own
+/// labels, or any with a `report` to fill; docs/training.md). Each
 /// report's line is what that step did (as ProgressCallback gets it); the last report has done == total.
 using TrainingProgress = Progress;
 
