@@ -55,15 +55,14 @@ nlohmann::json summary_json(const core::CategoryModel& model, const core::Traini
 }
 
 void print_summary(const core::CategoryModel& model, const core::TrainingReport& report) {
+  const auto percent = [](double fraction) { return std::round(1000 * fraction) / 10; };
   std::cerr << "canonical: " << model.training.canonical << " (" << report.canonical_choice << ")\n";
   for (const core::ShapeSpace& space : model.spaces) {
     std::cerr << "space " << space.name << ": " << space.point_count() << " points, " << space.dimensions()
               << " dimensions, explained variance";
-    for (double fraction : space.explained_fraction())
-      std::cerr << ' ' << std::round(1000 * fraction) / 10 << '%';
+    for (double fraction : space.explained_fraction()) std::cerr << ' ' << percent(fraction) << '%';
     std::cerr << '\n';
   }
-  const auto percent = [](double fraction) { return std::round(1000 * fraction) / 10; };
   for (const auto& [instance, agreement] : report.label_agreement) {
     std::cerr << "label propagation onto " << instance << ":";
     for (const auto& [part, fraction] : agreement.by_surface)

@@ -35,12 +35,9 @@ double point_triangle_distance(const Eigen::Vector3d& p, const Eigen::Vector3d& 
       {point_segment_distance(p, a, b), point_segment_distance(p, b, c), point_segment_distance(p, c, a)});
 }
 
-Eigen::Array<bool, Eigen::Dynamic, Eigen::Dynamic> parts_through_points(const Mesh& mesh,
-                                                                        const Eigen::VectorXi& vertex_part,
-                                                                        int part_count, const Points& points,
-                                                                        double tolerance) {
-  Eigen::Array<bool, Eigen::Dynamic, Eigen::Dynamic> through =
-      Eigen::Array<bool, Eigen::Dynamic, Eigen::Dynamic>::Constant(points.rows(), part_count, false);
+PartsThrough parts_through_points(const Mesh& mesh, const Eigen::VectorXi& vertex_part, int part_count,
+                                  const Points& points, double tolerance) {
+  PartsThrough through = PartsThrough::Constant(points.rows(), part_count, false);
   if (points.rows() == 0 || vertex_part.size() != mesh.vertices.rows()) return through;
   const KdTree tree(points);
   std::vector<std::pair<int, double>> near;

@@ -13,13 +13,14 @@
 
 namespace partreg::core::detail {
 
-/// Points x parts: true where a face of that part passes within `tolerance` of the point. A face belongs to
-/// the part of each of its vertices (`vertex_part`, one per mesh vertex), so one that straddles a labelled
-/// boundary counts for both sides. Same units for all three; `part_count` columns.
-Eigen::Array<bool, Eigen::Dynamic, Eigen::Dynamic> parts_through_points(const Mesh& mesh,
-                                                                        const Eigen::VectorXi& vertex_part,
-                                                                        int part_count, const Points& points,
-                                                                        double tolerance);
+/// Points x parts: true where that part's surface passes through the point.
+using PartsThrough = Eigen::Array<bool, Eigen::Dynamic, Eigen::Dynamic>;
+
+/// Which parts' faces pass within `tolerance` of each point. A face belongs to the part of each of its
+/// vertices (`vertex_part`, one per mesh vertex), so one that straddles a labelled boundary counts for both
+/// sides. Same units for all three; `part_count` columns.
+PartsThrough parts_through_points(const Mesh& mesh, const Eigen::VectorXi& vertex_part, int part_count,
+                                  const Points& points, double tolerance);
 
 /// Distance from `p` to the triangle (a, b, c), degenerate triangles included.
 double point_triangle_distance(const Eigen::Vector3d& p, const Eigen::Vector3d& a, const Eigen::Vector3d& b,

@@ -164,7 +164,7 @@ TrainingReport::LabelAgreement agreement(const Target& target, const Eigen::Vect
                                          const std::vector<std::string>& part_names) {
   const int parts = static_cast<int>(part_names.size());
   const Mesh mesh{normalization.apply(instance.mesh.vertices), instance.mesh.faces, {}};
-  Eigen::Array<bool, Eigen::Dynamic, Eigen::Dynamic> through = detail::parts_through_points(
+  detail::PartsThrough through = detail::parts_through_points(
       mesh, instance.mesh_vertex_part, parts, target.points, 0.001 * bounding_box_diagonal(target.points));
   for (Eigen::Index i = 0; i < target.points.rows(); ++i)
     through(i, target.part[i]) = true;  // its own part, whatever the mesh (a cloud has none)
