@@ -13,7 +13,7 @@ cmake -S . -B build-sanitize -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo -DPARTRE
   -DPARTREG_BUILD_BENCHMARKS=OFF >/dev/null
 cmake --build build-sanitize --target partreg_sanitizer_suite --parallel "$(nproc)"
 # Three cases repeat at scale a code path a smaller case runs under the sanitizers too, and took 550 of the
-# pass's 2300 CPU seconds there (about 8x their plain time): the fast CPD against the exact one at 5000 points
+# pass's 2300 CPU seconds there (7 to 11 times their plain time): the fast CPD against the exact one at 5000 points
 # (ABrokenTruncation... runs both paths at 2000), the coupled synthetic mug (Registration.ANoisyCloud... and
 # Training.ChoosesTheCoupledSeamWeight... register coupled), the refinement of a partial view
 # (Refinement.FollowsTheInsideOfABowlSeenFromAbove refines one with its viewpoint). The plain pass runs them.
