@@ -101,6 +101,19 @@ SparseKernel truncated_kernel(const Points& points, const Points& centres, doubl
   return kernel;
 }
 
+// G^T d(mass) G, dense (K x K), summed row by row of G as the rows' outer products: a row meets a few dozen
+// centres. Eigen's sparse-sparse product built a sparse result first and took over 40% of the refinement's
+// time (perf, BM_KettleHolisticRefinedSerial; docs/benchmarks.md).
+Eigen::MatrixXd weighted_gram(const SparseKernel& G, const Eigen::VectorXd& mass) {
+  Eigen::MatrixXd gram = Eigen::MatrixXd::Zero(G.cols(), G.cols());
+  for (Eigen::Index m = 0; m < G.outerSize(); ++m)
+    for (SparseKernel::InnerIterator a(G, m); a; ++a) {
+      const double scaled = mass[m] * a.value();
+      for (SparseKernel::InnerIterator b(G, m); b; ++b) gram(b.col(), a.col()) += scaled * b.value();
+    }
+  return gram;
+}
+
 }  // namespace
 
 Points RefinementField::displacement_at(const Points& positions) const {
@@ -204,8 +217,7 @@ RefinementField refine_fit(const Points& fitted, const Points& observed,
         }
         // (G^T d(mass) G + lambda sigma2 G_LL) W = G^T pull: the normal equations of CPD's objective with
         // the field on K centres (the motion-coherence term is the field's kernel norm W^T G_LL W).
-        const SparseKernel weighted = mass.asDiagonal() * G;
-        Eigen::MatrixXd system = Eigen::MatrixXd(G.transpose() * weighted);
+        Eigen::MatrixXd system = weighted_gram(G, mass);
         system += settings.lambda * sigma2 * G_centres;
         weights = system.ldlt().solve(G.transpose() * pull);
         moved_seen = fitted_seen + select_rows(Points(G * weights), seen);
