@@ -13,10 +13,11 @@ cmake -S . -B build-sanitize -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo -DPARTRE
   -DPARTREG_BUILD_BENCHMARKS=OFF >/dev/null
 cmake --build build-sanitize --target partreg_sanitizer_suite --parallel "$(nproc)"
 # Three cases repeat at scale a code path a smaller case runs under the sanitizers too, and took 550 of the
-# pass's 2300 CPU seconds there (7 to 11 times their plain time): the fast CPD against the exact one at 5000 points
-# (ABrokenTruncation... runs both paths at 2000), the coupled synthetic mug (Registration.ANoisyCloud... and
-# Training.ChoosesTheCoupledSeamWeight... register coupled), the refinement of a partial view
-# (Refinement.FollowsTheInsideOfABowlSeenFromAbove refines one with its viewpoint). The plain pass runs them.
+# pass's 2300 CPU seconds there (7 to 11 times their plain time): the fast CPD against the exact one at 5000
+# points (ABrokenTruncation... runs both paths at 2000), the coupled synthetic mug
+# (Registration.ANoisyCloud... and Training.ChoosesTheCoupledSeamWeight... register coupled), the refinement
+# of a partial view (Refinement.FollowsTheInsideOfABowlSeenFromAbove refines one with its viewpoint). The
+# plain pass runs them.
 sanitizer_skips='^(NonrigidCpd\.FastPathAgreesWithExactPath|CoupledRegistration\.TheHandleStaysAttachedWherePartwiseComesApart|Refinement\.KeepsTheUnseenSideOfAPartialViewAtTheSpacesPrediction)$'
 (cd build-sanitize && ASAN_OPTIONS=detect_leaks=1 LSAN_OPTIONS="suppressions=$PWD/../scripts/lsan.supp" \
   ctest --output-on-failure --label-regex '^(core|io|eval)$' --label-exclude '^data$' \
