@@ -1,6 +1,7 @@
 #include "partreg/core/parallel.hpp"
 
 #include <algorithm>
+#include <atomic>
 #include <exception>
 #include <thread>
 #include <vector>
@@ -34,20 +35,26 @@ void parallel_for(Eigen::Index count, const std::function<void(Eigen::Index, Eig
     body(0, count);
     return;
   }
-  std::vector<std::thread> pool;
+  // Chunks are handed out as workers come free, not dealt in advance: the items of one loop can differ in
+  // cost several times over (pose hypotheses that converge early, or see more points), and halves dealt in
+  // advance left one thread idle for a third of the pose search (docs/benchmarks.md). About eight chunks
+  // per worker.
+  const Eigen::Index chunk = std::max<Eigen::Index>(1, count / (8 * workers));
+  std::atomic<Eigen::Index> next{0};
   std::vector<std::exception_ptr> errors(static_cast<std::size_t>(workers));
-  const Eigen::Index chunk = (count + workers - 1) / workers;
-  for (Eigen::Index w = 0; w < workers; ++w) {
-    const Eigen::Index begin = w * chunk, end = std::min(count, begin + chunk);
-    pool.emplace_back([&, w, begin, end] {
-      try {
-        const ThreadBudget one(1);  // this thread is part of the caller's budget: nested loops stay serial
-        if (begin < end) body(begin, end);
-      } catch (...) {
-        errors[static_cast<std::size_t>(w)] = std::current_exception();
-      }
-    });
-  }
+  const auto work = [&](Eigen::Index w) {
+    try {
+      const ThreadBudget one(1);  // this thread is part of the caller's budget: nested loops stay serial
+      for (Eigen::Index begin = next.fetch_add(chunk); begin < count; begin = next.fetch_add(chunk))
+        body(begin, std::min(count, begin + chunk));
+    } catch (...) {
+      errors[static_cast<std::size_t>(w)] = std::current_exception();
+      next = count;  // the others stop at their next chunk
+    }
+  };
+  std::vector<std::thread> pool;
+  for (Eigen::Index w = 1; w < workers; ++w) pool.emplace_back(work, w);
+  work(0);  // the calling thread is one of the workers
   for (std::thread& thread : pool) thread.join();
   for (const std::exception_ptr& error : errors)
     if (error) std::rethrow_exception(error);

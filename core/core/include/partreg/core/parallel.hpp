@@ -36,7 +36,10 @@ class ThreadBudget {
 };
 
 /// Calls body(begin, end) on contiguous chunks covering [0, count), on up to min(`threads`, thread_budget())
-/// threads (`threads` 0 = the budget). Small ranges run on the calling thread. Exceptions propagate.
+/// threads (`threads` 0 = the budget), the calling thread one of them; each thread takes the next chunk when
+/// it is free, so a chunk's thread and the order chunks run in vary from run to run (a body must write only
+/// its own items' results). Small ranges run on the calling thread. Exceptions propagate (one of them, when
+/// several threads throw; the others stop at their next chunk).
 void parallel_for(Eigen::Index count, const std::function<void(Eigen::Index, Eigen::Index)>& body,
                   int threads = 0, Eigen::Index minimum_chunk = 64);
 
