@@ -46,7 +46,8 @@ const Setup* setup_for(const std::string& folder, int part_points) {
 
 using Adjust = std::function<void(partreg::core::RegistrationSettings&)>;
 
-// The default settings for `variant`, changed by `adjust`; `threads` as ThreadBudget counts them (0 = all).
+// The default settings for `variant`, changed by `adjust`; `threads` as ThreadBudget counts them (0 = all);
+// `one_side`: the observation is the setup's side view, its viewpoint known, instead of the whole cloud.
 void run(benchmark::State& state, const std::string& folder, partreg::core::Variant variant,
          const Adjust& adjust = {}, int threads = 0,
          int part_points = partreg::core::TrainingSettings{}.min_part_points, bool one_side = false) {

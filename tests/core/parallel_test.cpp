@@ -44,7 +44,7 @@ TEST(ParallelFor, VisitsEveryItemOnceWithinTheBudget) {
 }
 
 // The loop's items differ in cost (pose hypotheses): a thread that is free takes the next chunk. Item 0
-// waits for items 10 .. 99 (chunks of two threads are at most an eighth of the items). Dealt in halves in
+// waits for items 10 .. 99 (with two threads a chunk is about a sixteenth of the items). Dealt in halves in
 // advance, item 0's thread would also own items 10 .. 49, and item 0 would wait forever; here it waits at
 // most 20 s, then reports the items still undone.
 TEST(ParallelFor, AFreeThreadTakesTheNextChunk) {
