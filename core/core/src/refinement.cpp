@@ -101,18 +101,28 @@ SparseKernel truncated_kernel(const Points& points, const Points& centres, doubl
   return kernel;
 }
 
-// G^T d(mass) G over the rows `rows` of G (mass[i] weighs row rows[i]), dense (K x K), summed as the rows'
-// outer products: a row meets a few dozen centres. Eigen's sparse-sparse product built a sparse result first
-// and took over 40% of the refinement's time (perf, BM_KettleHolisticRefinedSerial; docs/benchmarks.md).
-Eigen::MatrixXd weighted_gram(const SparseKernel& G, const std::vector<int>& rows,
-                              const Eigen::VectorXd& mass) {
+// G^T d(mass) G, dense (K x K), summed as the rows' outer products: a row meets a few dozen centres. Eigen's
+// sparse-sparse product built a sparse result first and took over 40% of the refinement's time (perf,
+// BM_KettleHolisticRefinedSerial; docs/benchmarks.md).
+Eigen::MatrixXd weighted_gram(const SparseKernel& G, const Eigen::VectorXd& mass) {
   Eigen::MatrixXd gram = Eigen::MatrixXd::Zero(G.cols(), G.cols());
-  for (std::size_t i = 0; i < rows.size(); ++i)
-    for (SparseKernel::InnerIterator a(G, rows[i]); a; ++a) {
-      const double scaled = mass[static_cast<Eigen::Index>(i)] * a.value();
-      for (SparseKernel::InnerIterator b(G, rows[i]); b; ++b) gram(b.col(), a.col()) += scaled * b.value();
+  for (Eigen::Index m = 0; m < G.outerSize(); ++m)
+    for (SparseKernel::InnerIterator a(G, m); a; ++a) {
+      const double scaled = mass[m] * a.value();
+      for (SparseKernel::InnerIterator b(G, m); b; ++b) gram(b.col(), a.col()) += scaled * b.value();
     }
   return gram;
+}
+
+// The rows `rows` of G, in that order.
+SparseKernel kernel_rows(const SparseKernel& G, const std::vector<int>& rows) {
+  std::vector<Eigen::Triplet<double>> entries;
+  for (std::size_t i = 0; i < rows.size(); ++i)
+    for (SparseKernel::InnerIterator a(G, rows[i]); a; ++a)
+      entries.emplace_back(static_cast<int>(i), static_cast<int>(a.col()), a.value());
+  SparseKernel selected(static_cast<Eigen::Index>(rows.size()), G.cols());
+  selected.setFromTriplets(entries.begin(), entries.end());
+  return selected;
 }
 
 // The rows of 0 .. count - 1 not in `rows` (ascending).
@@ -214,28 +224,25 @@ RefinementField refine_fit(const Points& fitted, const Points& observed,
   control.max_iterations = settings.iterations;
   // The residual variance of the fit over the matched points, per axis (as CPD's sigma2 is).
   control.initial_sigma2 = std::max(kMinimumSigma2, squared(near).mean() / 3.0);
-  // The unobserved rows' share of the normal equations changes only by its common weight (the anchor below):
-  // summed once here, not every iteration (up to half of the sum on a partial view).
-  const std::vector<int> unseen = other_rows(fitted.rows(), seen);
-  const Eigen::MatrixXd unseen_gram =
-      weighted_gram(G, unseen, Eigen::VectorXd::Ones(static_cast<Eigen::Index>(unseen.size())));
+  // The EM reads the observed rows of G only; the unobserved rows' share of the normal equations changes only
+  // by its common weight (the anchor below), so it is summed once here, not every iteration.
+  const SparseKernel G_seen = kernel_rows(G, seen);
+  const SparseKernel G_unseen = kernel_rows(G, other_rows(fitted.rows(), seen));
+  const Eigen::MatrixXd unseen_gram = weighted_gram(G_unseen, Eigen::VectorXd::Ones(G_unseen.rows()));
   const detail::EmOutcome outcome =
       detail::run_em(matched, moved_seen, control, [&](const detail::Expectation& e, double sigma2) {
         // Unobserved points pull towards zero displacement (the space's prediction) with the anchor's
         // weight, in units of an observed point's mean posterior mass.
         const double anchor = settings.anchor * e.Np / static_cast<double>(seen.size());
-        Points pull = Points::Zero(fitted.rows(), 3);  // P X - d(P1) Y on observed rows, 0 elsewhere
-        for (std::size_t i = 0; i < seen.size(); ++i) {
-          const auto r = static_cast<Eigen::Index>(i);
-          pull.row(seen[i]) = e.PX.row(r) - e.P1[r] * fitted_seen.row(r);
-        }
+        const Points pull =
+            e.PX - e.P1.asDiagonal() * fitted_seen;  // P X - d(P1) Y, observed rows (0 elsewhere)
         // (G^T d(mass) G + lambda sigma2 G_LL) W = G^T pull: the normal equations of CPD's objective with
         // the field on K centres (the motion-coherence term is the field's kernel norm W^T G_LL W); mass is
         // P1 on observed rows and the anchor on the others.
-        Eigen::MatrixXd system = weighted_gram(G, seen, e.P1);
+        Eigen::MatrixXd system = weighted_gram(G_seen, e.P1);
         system += anchor * unseen_gram + settings.lambda * sigma2 * G_centres;
-        weights = system.ldlt().solve(G.transpose() * pull);
-        moved_seen = fitted_seen + select_rows(Points(G * weights), seen);
+        weights = system.ldlt().solve(G_seen.transpose() * pull);
+        moved_seen = fitted_seen + Points(G_seen * weights);
         return detail::nonrigid_variance(e, matched, moved_seen);
       });
   field.centres = centres;
