@@ -128,6 +128,43 @@ TEST(EvalCommand, NoBaselinesLeavesOnlyTheVariantsRows) {
   EXPECT_EQ(read_text(dir / "eval" / "tables.md").find("Against the baselines"), std::string::npos);
 }
 
+// A mesh instance's truth is a dense sample of its own, parts included: the true shape's forward half (its
+// points to the nearest truth point) is bounded by the truth's spacing, which the training sample of 4000
+// points would set (docs/evaluation.md, "The truth").
+TEST(EvalCommand, TheTruthIsADenseSampleOfItsOwnWithItsParts) {
+  testing::TempDir dir;
+  const std::string data = (dir / "mugs").string();
+  ASSERT_EQ(run("synth mug --instances 4 --out " + data).exit_code, 0);
+  const auto true_shapes = [&](const std::string& name, const std::string& truth) {
+    const Outcome result =
+        run("eval " + data + " --protocol quick --views 0 --sweeps none --variants hol+part " + truth +
+            " --out " + (dir / name).string());
+    EXPECT_EQ(result.exit_code, 0) << result.output;
+    std::vector<eval::EvalRow> rows = eval::read_rows_csv(dir / name / "results.csv");
+    EXPECT_EQ(rows.size(), 2u * 5);  // 2 instances x (hol+part + 4 baselines)
+    return rows;
+  };
+  const std::vector<eval::EvalRow> dense = true_shapes("dense", ""),
+                                   sampled = true_shapes("sampled", "--truth-samples 0");
+  ASSERT_EQ(dense.size(), sampled.size());
+  for (std::size_t r = 0; r < dense.size(); ++r) {
+    // The same instance, measured on another sample of its surface: the diagonal barely moves.
+    EXPECT_NEAR(dense[r].diagonal, sampled[r].diagonal, 0.02 * sampled[r].diagonal);
+    if (dense[r].variant == "true-shape") {
+      // Measured 0.44% against 0.97-1.00% of the diagonal: the spacing of 20000 points against 4000.
+      EXPECT_LT(dense[r].errors.forward_rms_per_diagonal(),
+                0.6 * sampled[r].errors.forward_rms_per_diagonal());
+    }
+    if (dense[r].variant ==
+        "hol+part") {  // the dense truth carries its parts: each is scored against its own
+      EXPECT_EQ(dense[r].errors.own_part_rms_per_diagonal.size(), 2u);
+      EXPECT_LT(*dense[r].errors.own_part_rms_mean_per_diagonal, 0.05);
+    }
+  }
+  EXPECT_NE(read_text(dir / "dense" / "run.json").find("\"truth_samples\": 20000"), std::string::npos);
+  EXPECT_NE(read_text(dir / "sampled" / "run.json").find("\"truth_samples\": 0"), std::string::npos);
+}
+
 // The sweeps the paper lacks: yaw all round the up axis (the pose search makes it flat) and rotation past
 // 0.65 rad.
 TEST(EvalCommand, YawAndWideRotationSweepsRunEveryLevelAndReachTheTables) {

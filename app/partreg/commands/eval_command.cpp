@@ -170,9 +170,11 @@ void run_eval(EvalOptions& options) {
       {"threads", options.settings.threads},
       {"variants", options.variants},
       {"baselines", options.settings.baselines},
+      {"samples", options.dataset.points_per_instance},
+      {"truth_samples", options.settings.truth_points},
       // The settings every row used (a row's variant and viewpoint are its own), and every fold's training.
-      {"registration",
-       settings_json(core::registration_option_values(options.settings.registration), {"variant", "viewpoint"})},
+      {"registration", settings_json(core::registration_option_values(options.settings.registration),
+                                     {"variant", "viewpoint"})},
       {"training", settings_json(core::training_option_values(options.settings.training))},
       {"registrations", registrations},
       {"rows", rows.size()},
@@ -245,7 +247,16 @@ void add_eval_command(CLI::App& app) {
   command->add_flag("--no-viewpoint", o->no_viewpoint, "do not tell the registration where the camera was");
   command->add_flag("--no-baselines", o->no_baselines,
                     "skip the baseline rows (oracle-template, rigid-canonical, mean-shape, true-shape)");
-  command->add_option("--samples", o->dataset.points_per_instance, "surface samples per mesh (the truth)")
+  command
+      ->add_option("--samples", o->dataset.points_per_instance,
+                   "surface samples per mesh instance (what the folds train on)")
+      ->capture_default_str();
+  command
+      ->add_option(
+          "--truth-samples", o->settings.truth_points,
+          "surface samples of a mesh instance's truth, drawn apart from the training sample (0: score "
+          "against the training sample, as before 2026-12-07)")
+      ->check(CLI::NonNegativeNumber)
       ->capture_default_str();
   command->add_option("--seed", o->settings.seed, "seed of views, samples and perturbations")
       ->capture_default_str();

@@ -100,9 +100,10 @@ nlohmann::json truth_errors(const core::CategoryModel& model, const core::Points
     throw InputError("--truth " + options.truth_path +
                      " is a folder of part meshes but the model has no parts");
   const core::TrainingInstance labelled =
-      has_parts ? io::read_part_folder(options.truth_path, model.part_names, {20000, 2})
+      has_parts ? io::read_part_folder(options.truth_path, model.part_names, {core::kTruthSamples, 2})
                 : core::TrainingInstance{};
-  const core::Points truth = has_parts ? labelled.points : read_points_logged(options.truth_path, 20000, 2);
+  const core::Points truth =
+      has_parts ? labelled.points : read_points_logged(options.truth_path, core::kTruthSamples, 2);
   const double diagonal = core::truth_diagonal(truth);
   const core::KdTree truth_tree(truth);
   const core::TruthErrors errors =

@@ -13,7 +13,8 @@
 
 namespace partreg::core {
 
-Cloud sample_surface(const Mesh& mesh, std::size_t count, std::uint64_t seed) {
+Cloud sample_surface(const Mesh& mesh, std::size_t count, std::uint64_t seed,
+                     Eigen::VectorXi* face_of_point) {
   if (count == 0) throw UsageError("asked for 0 surface samples");
   if (mesh.faces.rows() == 0) throw InputError("cannot sample a mesh with no faces");
   std::vector<double> areas(static_cast<std::size_t>(mesh.faces.rows()));
@@ -35,6 +36,7 @@ Cloud sample_surface(const Mesh& mesh, std::size_t count, std::uint64_t seed) {
   Cloud cloud;
   cloud.points.resize(static_cast<Eigen::Index>(count), 3);
   cloud.normals.resize(static_cast<Eigen::Index>(count), 3);
+  if (face_of_point) face_of_point->resize(static_cast<Eigen::Index>(count));
   for (Eigen::Index i = 0; i < static_cast<Eigen::Index>(count); ++i) {
     const Eigen::Index f = pick_face(generator);
     // sqrt on the first coordinate makes the barycentric point uniform over the triangle's area.
@@ -43,6 +45,7 @@ Cloud sample_surface(const Mesh& mesh, std::size_t count, std::uint64_t seed) {
                           r1 * (1.0 - r2) * mesh.vertices.row(mesh.faces(f, 1)) +
                           r1 * r2 * mesh.vertices.row(mesh.faces(f, 2));
     cloud.normals.row(i) = normals.row(f);
+    if (face_of_point) (*face_of_point)[i] = static_cast<int>(f);
   }
   return cloud;
 }

@@ -30,11 +30,18 @@ struct Observation {
   std::optional<Eigen::Vector3d> viewpoint;
 };
 
+// What a tested instance's registrations are scored against, in its own frame.
+struct Truth {
+  core::Points points;
+  Eigen::VectorXi part;  // the truth's own part per point; empty when it has none
+};
+
 // Everything about one tested instance that does not depend on the model.
 struct TestCase {
   std::size_t instance = 0;  // index into EvalInput::instances
   int fold = 0;
-  double diagonal = 0.0;
+  Truth truth;
+  double diagonal = 0.0;                  // D of the truth (truth_errors.hpp)
   std::vector<Observation> observations;  // full view first, then partial views in direction order
 };
 
@@ -89,10 +96,31 @@ std::vector<core::Variant> usable_variants(const EvalInput& input, const EvalSet
   return variants;
 }
 
+// The truth of a mesh instance is a sample of its own (EvalSettings::truth_points), each point with its
+// face's part, so that the truth's spacing, not the training sample's, bounds the forward half. Cloud data,
+// an instance whose parts are given per point rather than per mesh vertex, and truth_points 0 keep the
+// instance's own points.
+Truth truth_of(const core::TrainingInstance& instance, const EvalSettings& settings, std::uint64_t seed) {
+  const core::Mesh& mesh = instance.mesh;
+  const bool parts_on_mesh =
+      instance.part.size() == 0 || instance.mesh_vertex_part.size() == mesh.vertices.rows();
+  if (mesh.faces.rows() == 0 || settings.truth_points == 0 || !parts_on_mesh)
+    return {instance.points, instance.part};
+  Eigen::VectorXi face;
+  Truth truth{core::sample_surface(mesh, static_cast<std::size_t>(settings.truth_points), seed, &face).points,
+              {}};
+  if (instance.part.size() == 0) return truth;
+  truth.part.resize(face.size());
+  for (Eigen::Index i = 0; i < face.size(); ++i)
+    truth.part[i] = instance.mesh_vertex_part[mesh.faces(face[i], 0)];
+  return truth;
+}
+
 TestCase make_test_case(const EvalInput& input, std::size_t index, int fold, const EvalSettings& settings,
                         const std::vector<Eigen::Vector3d>& directions, const EvalProgress& progress) {
   const core::TrainingInstance& instance = input.instances[index];
-  TestCase test{index, fold, core::bounding_box_diagonal(instance.points), {}};
+  TestCase test{index, fold, truth_of(instance, settings, mix(mix(settings.seed, index), 1)), 0.0, {}};
+  test.diagonal = core::truth_diagonal(test.truth.points);
   const bool has_mesh = instance.mesh.faces.rows() > 0;
   Observation full;
   full.points =
@@ -170,7 +198,7 @@ void run_job(const EvalInput& input, const EvalSettings& settings, const FoldCon
       core::with_model_defaults(settings.registration, model).initialisation.up.value();
   const Perturbed perturbed = perturb(observation.points, job.kind, level, test.diagonal, seed, up);
   const core::KdTree truth(
-      moved_by(instance.points, perturbed.T_perturbed_original));  // shared by the variants
+      moved_by(test.truth.points, perturbed.T_perturbed_original));  // shared by the variants
   const std::optional<core::Points> truth_of_row =
       correspondents ? std::optional<core::Points>(moved_by(*correspondents, perturbed.T_perturbed_original))
                      : std::nullopt;
@@ -195,7 +223,8 @@ void run_job(const EvalInput& input, const EvalSettings& settings, const FoldCon
                    std::nullopt};
   };
   // The truth's own parts (part files, or a labels file of its own) score each part against its own.
-  const bool truth_has_parts = !model.part_names.empty() && instance.part.size() == instance.points.rows();
+  const bool truth_has_parts =
+      !model.part_names.empty() && test.truth.part.size() == test.truth.points.rows();
   std::vector<core::RegistrationResult> results;
   for (std::size_t v = 0; v < variants.size(); ++v) {
     registration.variant = variants[v];
@@ -204,7 +233,7 @@ void run_job(const EvalInput& input, const EvalSettings& settings, const FoldCon
         make_row(core::enum_name(variants[v]),
                  core::measure_against_truth(results[v].deformed, results[v].part, model.part_names, truth,
                                              test.diagonal, truth_of_row ? &*truth_of_row : nullptr,
-                                             truth_has_parts ? &instance.part : nullptr),
+                                             truth_has_parts ? &test.truth.part : nullptr),
                  results[v].seconds);
     if (variants[v] != core::Variant::holistic) rows[v].seam = core::seam_gap(model, results[v]);
   }

@@ -12,8 +12,10 @@ namespace partreg::core {
 /// `count` points uniformly distributed over the mesh's area (each triangle drawn with probability
 /// proportional to its area, then a uniform point inside it), with the triangle's normal. Deterministic
 /// for a seed. Works on open meshes with inner faces (ShapeNet): nothing assumes a closed surface.
-/// Throws InputError for a mesh without faces or area, and UsageError for count 0.
-Cloud sample_surface(const Mesh& mesh, std::size_t count, std::uint64_t seed);
+/// Throws InputError for a mesh without faces or area, and UsageError for count 0. With `face_of_point`, also
+/// the face each point was drawn from (a part per face gives the sample its parts).
+Cloud sample_surface(const Mesh& mesh, std::size_t count, std::uint64_t seed,
+                     Eigen::VectorXi* face_of_point = nullptr);
 
 /// Farthest-point downsampling: `count` row indices, starting at row `first`, each next point the one
 /// farthest from those already chosen. Chosen over a voxel grid because it keeps thin parts (handles,

@@ -62,6 +62,9 @@ struct EvalSettings {
   bool baselines = true;        ///< also score the baselines (baselines.hpp): one row each per observation
   bool use_viewpoint = true;    ///< partial views tell the registration where the camera was
   int full_view_points = 4000;  ///< surface samples of a mesh's full view (a different sample than the truth)
+  /// Surface samples of a mesh instance's truth, drawn apart from the training sample and the full view; 0
+  /// scores against the training sample (before 2026-12-07). Cloud data is its own truth.
+  int truth_points = core::kTruthSamples;
   int threads = 0;              ///< 0 = all cores
   int shard = 0;                ///< this run's shard, in [0, shard_count)
   int shard_count = 1;          ///< tested instances are dealt to shards round-robin
