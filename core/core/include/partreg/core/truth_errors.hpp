@@ -20,8 +20,8 @@ namespace partreg::core {
 
 /// Points a true instance given as a mesh is sampled to (area-uniform) before registrations are scored
 /// against it (`eval`, `register --truth`). The forward half measures against these points, not the surface,
-/// so their spacing sets its floor: a kettle's true shape as 1000 points scores a forward half of about 0.85%
-/// of D against 4000 samples and 0.37% against 20000 (docs/evaluation.md, "The truth").
+/// so their spacing sets its floor: the kettles' true shapes as the canonical's M points score a forward half
+/// of 0.85% of D against 4000 samples and 0.38% against 20000 (docs/evaluation.md, "The truth").
 constexpr int kTruthSamples = 20000;
 
 /// The errors of one registration against the whole true instance.
