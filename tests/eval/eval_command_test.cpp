@@ -63,6 +63,16 @@ TEST(EvalCommand, QuickProtocolOnASyntheticCategoryWritesRowsTablesAndPlotsThatA
         row.variant == "holistic" || row.variant == "partwise" || row.variant == "hol+part";
     ASSERT_EQ(row.errors.own_part_rms_per_diagonal.size(), registration ? 2u : 0u) << row.variant;
     if (registration) EXPECT_TRUE(std::isfinite(*row.errors.own_part_rms_mean_per_diagonal));
+    // Each registration says how far it stretched the canonical mesh. The synthetic mugs' handles differ
+    // much in size, so some edge always lengthens: clean full views measured 1.96-3.41x (a space's own grid
+    // of 4 such mugs reaches 4.2x; partial views, where partwise's parts roam, up to 7.1x). An edge measured
+    // in the wrong units (the canonical's normalised mesh against the data's) would be off by the model's
+    // scale, about 6x.
+    ASSERT_EQ(row.mesh_stretch.has_value(), registration) << row.variant;
+    if (registration && row.view < 0 && row.perturbation == eval::Perturbation::none) {
+      EXPECT_GT(*row.mesh_stretch, 1.0) << row.variant;
+      EXPECT_LT(*row.mesh_stretch, 4.5) << row.variant;
+    }
   }
   // Every observation has its four baselines; the oracle (which may pick the canonical) is never worse than
   // the rigid canonical on the same observation, and the true shape (the tested mug itself at its true pose,

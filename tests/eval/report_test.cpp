@@ -174,26 +174,61 @@ TEST(EvalReport, SeamGapsRoundTripAndShowForThePartVariantsOnly) {
   EXPECT_NE(full, std::string::npos) << tables;
   EXPECT_NE(tables.find("| mugs | 25.00 / 50.00 |"), std::string::npos) << tables;  // the partial view
 
-  // Format 2 (before the seam columns) and format 3 (before the own-part columns) files still read.
+  // Format 2 (before the seam columns), 3 (before the own-part columns) and 4 (before the mesh stretch) files
+  // still read. The holistic row ends in 5 empty fields: seam gaps, own-part figures, stretch.
   std::ifstream in(dir / "r.csv");
   std::string format, header, line;
   std::getline(in, format), std::getline(in, header), std::getline(in, line);
-  const std::string format3_header = header.substr(0, header.rfind(",own_part_rms_mean"));
-  const std::string format3_line =
-      line.substr(0, line.size() - 2);  // holistic ends in 2 empty own-part fields
+  const auto header_before = [&](const char* column) { return header.substr(0, header.rfind(column)); };
+  const auto line_without = [&](std::size_t empty_fields) {
+    return line.substr(0, line.size() - empty_fields);
+  };
   std::ofstream(dir / "v2.csv") << "# partreg evaluation rows, format 2\n"
-                                << header.substr(0, header.rfind(",seam_gap_mean")) << "\n"
-                                << format3_line.substr(0, format3_line.size() - 2) << "\n";
+                                << header_before(",seam_gap_mean") << "\n"
+                                << line_without(5) << "\n";
   std::ofstream(dir / "v3.csv") << "# partreg evaluation rows, format 3\n"
-                                << format3_header << "\n"
-                                << format3_line << "\n";
-  for (const char* file : {"v2.csv", "v3.csv"}) {
+                                << header_before(",own_part_rms_mean") << "\n"
+                                << line_without(3) << "\n";
+  std::ofstream(dir / "v4.csv") << "# partreg evaluation rows, format 4\n"
+                                << header_before(",mesh_stretch_max") << "\n"
+                                << line_without(1) << "\n";
+  for (const char* file : {"v2.csv", "v3.csv", "v4.csv"}) {
     const std::vector<eval::EvalRow> older = eval::read_rows_csv(dir / file);
     ASSERT_EQ(older.size(), 1u) << file;
     EXPECT_FALSE(older[0].seam);
     EXPECT_FALSE(older[0].errors.own_part_rms_mean_per_diagonal);
+    EXPECT_FALSE(older[0].mesh_stretch);
     EXPECT_DOUBLE_EQ(older[0].errors.eq5_per_diagonal2, 4e-4);
   }
+}
+
+TEST(EvalReport, MeshStretchRoundTripsAndShowsItsMeanAndLargest) {
+  // coupled, full views stretched 1.5x and 2.5x (mean 2.00, largest 2.50); a perturbed row and the baseline
+  // are not in the clean table, which holistic (no stretch recorded) does not join either.
+  std::vector<eval::EvalRow> rows = {row("coupled", -1, eval::Perturbation::none, -1, 3e-4),
+                                     row("coupled", -1, eval::Perturbation::none, -1, 3e-4),
+                                     row("coupled", -1, eval::Perturbation::noise, 0, 3e-4),
+                                     row("holistic", -1, eval::Perturbation::none, -1, 3e-4),
+                                     row("oracle-template", -1, eval::Perturbation::none, -1, 5e-4)};
+  rows[0].mesh_stretch = 1.5;
+  rows[1].mesh_stretch = 2.5;
+  rows[2].mesh_stretch = 9.0;
+  testing::TempDir dir;
+  eval::write_rows_csv(dir / "r.csv", rows);
+  const std::vector<eval::EvalRow> back = eval::read_rows_csv(dir / "r.csv");
+  ASSERT_EQ(back.size(), rows.size());
+  ASSERT_TRUE(back[1].mesh_stretch);
+  EXPECT_DOUBLE_EQ(*back[1].mesh_stretch, 2.5);
+  EXPECT_FALSE(back[3].mesh_stretch);
+  const std::string tables = eval::markdown_report(back);
+  EXPECT_NE(
+      tables.find("deformed / canonical edge length), mean / largest over the registrations, full views\n\n"
+                  "| category | coupled |\n|---|---|\n| mugs | 2.00 / 2.50 |"),
+      std::string::npos)
+      << tables;
+  EXPECT_NE(tables.find("partial views\n\n| category | coupled |\n|---|---|\n| mugs | - / - |"),
+            std::string::npos)
+      << tables;
 }
 
 TEST(EvalReport, OwnPartFiguresRoundTripAndShowPerPartAndTheirMean) {

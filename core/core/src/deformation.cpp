@@ -7,6 +7,7 @@
 #include "partreg/core/gaussian_kernel.hpp"
 #include "partreg/core/kdtree.hpp"
 #include "partreg/core/sampling.hpp"
+#include "partreg/core/space_walk.hpp"
 #include "seam_agreement.hpp"
 
 namespace partreg::core {
@@ -103,6 +104,13 @@ Mesh deform_mesh(const CategoryModel& model, const RegistrationResult& result, c
       deform_points(model, result, model.normalization.undo(model.canonical_mesh.vertices), blend);
   mesh.faces = model.canonical_mesh.faces;
   return mesh;
+}
+
+double mesh_stretch(const CategoryModel& model, const RegistrationResult& result) {
+  if (model.canonical_mesh.faces.rows() == 0) return 0.0;
+  // The canonical mesh is in normalised units, the deformed one in data units.
+  return max_edge_stretch(model.canonical_mesh,
+                          deform_mesh(model, result).vertices / model.normalization.scale);
 }
 
 SeamGap seam_gap(const CategoryModel& model, const RegistrationResult& result, double radius) {

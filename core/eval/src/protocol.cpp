@@ -220,6 +220,7 @@ void run_job(const EvalInput& input, const EvalSettings& settings, const FoldCon
                    static_cast<int>(perturbed.points.rows()),
                    errors,
                    seconds,
+                   std::nullopt,
                    std::nullopt};
   };
   // The truth's own parts (part files, or a labels file of its own) score each part against its own.
@@ -236,6 +237,7 @@ void run_job(const EvalInput& input, const EvalSettings& settings, const FoldCon
                                              truth_has_parts ? &test.truth.part : nullptr),
                  results[v].seconds);
     if (variants[v] != core::Variant::holistic) rows[v].seam = core::seam_gap(model, results[v]);
+    if (model.canonical_mesh.faces.rows() > 0) rows[v].mesh_stretch = core::mesh_stretch(model, results[v]);
   }
   if (!settings.baselines) return;
   // The full view's sample is independent of the truth's (for cloud data it is the truth itself).

@@ -17,24 +17,33 @@ namespace partreg::eval {
 namespace {
 
 // The first line names the layout's version (raised when a column changes meaning); the second the columns.
-// Format 3 added the two seam-gap columns at the end, format 4 the own-part figures after them; format 2 and
-// 3 files (without them) are still read.
-const char* const kFormatLine = "# partreg evaluation rows, format 4";
-const char* const kFormat3Line = "# partreg evaluation rows, format 3";
-const char* const kFormat2Line = "# partreg evaluation rows, format 2";
+// Each format added columns at the end: 3 the two seam-gap columns, 4 the own-part figures, 5 the mesh
+// stretch. Files of the earlier formats are still read (their missing figures stay empty).
 #define PARTREG_FORMAT_2_COLUMNS                                                                      \
   "category,instance,canonical,fold,variant,view,direction_x,direction_y,direction_z,perturbation,"   \
   "level_index,paper_level,level,diagonal,observed_points,eq5,eq5_per_diagonal2,reverse_eq5,"         \
   "symmetric_rms_per_diagonal,chamfer,chamfer_per_diagonal,correspondence_per_diagonal,part_eq5_per_" \
   "diagonal2,seconds"
 #define PARTREG_FORMAT_3_COLUMNS PARTREG_FORMAT_2_COLUMNS ",seam_gap_mean,seam_gap_max"
-const char* const kFormat2Header = PARTREG_FORMAT_2_COLUMNS;
-const char* const kFormat3Header = PARTREG_FORMAT_3_COLUMNS;
-const char* const kHeader =
-    PARTREG_FORMAT_3_COLUMNS ",own_part_rms_mean_per_diagonal,own_part_rms_per_diagonal";
+#define PARTREG_FORMAT_4_COLUMNS \
+  PARTREG_FORMAT_3_COLUMNS ",own_part_rms_mean_per_diagonal,own_part_rms_per_diagonal"
+struct CsvFormat {
+  const char* line;
+  const char* header;
+  std::size_t columns;
+};
+constexpr std::size_t kFormat2Columns = 24, kFormat3Columns = 26, kFormat4Columns = 28;
+// The format written first, then the older ones read.
+constexpr CsvFormat kFormats[] = {
+    {"# partreg evaluation rows, format 5", PARTREG_FORMAT_4_COLUMNS ",mesh_stretch_max",
+     kFormat4Columns + 1},
+    {"# partreg evaluation rows, format 4", PARTREG_FORMAT_4_COLUMNS, kFormat4Columns},
+    {"# partreg evaluation rows, format 3", PARTREG_FORMAT_3_COLUMNS, kFormat3Columns},
+    {"# partreg evaluation rows, format 2", PARTREG_FORMAT_2_COLUMNS, kFormat2Columns}};
+#undef PARTREG_FORMAT_4_COLUMNS
 #undef PARTREG_FORMAT_3_COLUMNS
 #undef PARTREG_FORMAT_2_COLUMNS
-constexpr std::size_t kFormat2Columns = 24, kFormat3Columns = 26, kColumns = 28;
+constexpr const CsvFormat& kFormat = kFormats[0];
 
 // Part errors in one CSV field: "body=1.2e-05;handle=3.4e-05".
 std::string parts_field(const std::map<std::string, double>& parts) {
@@ -87,6 +96,7 @@ EvalRow parse_row(const std::vector<std::string>& f) {
     row.errors.own_part_rms_mean_per_diagonal = std::stod(f[26]);
     row.errors.own_part_rms_per_diagonal = parse_parts(f[27]);
   }
+  if (f.size() > kFormat4Columns && !f[28].empty()) row.mesh_stretch = std::stod(f[28]);
   return row;
 }
 
@@ -178,7 +188,7 @@ std::vector<std::string> baselines_of(const std::vector<EvalRow>& rows) {
 void write_rows_csv(const std::filesystem::path& path, const std::vector<EvalRow>& rows) {
   std::ofstream out(path);
   if (!out) throw InputError("cannot write " + path.string());
-  out << kFormatLine << '\n' << kHeader << '\n' << std::setprecision(9);
+  out << kFormat.line << '\n' << kFormat.header << '\n' << std::setprecision(9);
   for (const EvalRow& r : rows) {
     out << r.category << ',' << r.instance << ',' << r.canonical << ',' << r.fold << ',' << r.variant << ','
         << r.view << ',' << r.direction.x() << ',' << r.direction.y() << ',' << r.direction.z() << ','
@@ -195,7 +205,9 @@ void write_rows_csv(const std::filesystem::path& path, const std::vector<EvalRow
       out << ',';
     out << ',';
     if (r.errors.own_part_rms_mean_per_diagonal) out << *r.errors.own_part_rms_mean_per_diagonal;
-    out << ',' << parts_field(r.errors.own_part_rms_per_diagonal) << '\n';
+    out << ',' << parts_field(r.errors.own_part_rms_per_diagonal) << ',';
+    if (r.mesh_stretch) out << *r.mesh_stretch;
+    out << '\n';
   }
   if (!out.flush()) throw InputError("cannot write " + path.string());
 }
@@ -206,13 +218,14 @@ std::vector<EvalRow> read_rows_csv(const std::filesystem::path& path) {
   std::string line;
   if (!std::getline(in, line) || line.rfind("# partreg evaluation rows", 0) != 0)
     throw InputError(path.string() + " is not a partreg evaluation CSV (its first line names no format)");
-  const bool format2 = line == kFormat2Line, format3 = line == kFormat3Line;
-  if (line != kFormatLine && !format2 && !format3)
+  const auto format = std::find_if(std::begin(kFormats), std::end(kFormats),
+                                   [&](const CsvFormat& known) { return line == known.line; });
+  if (format == std::end(kFormats))
     throw InputError(path.string() + " has another format (" + line.substr(2) + "; this partreg reads " +
-                     std::string(kFormatLine).substr(2) + ", 3 and 2): run the evaluation again");
-  if (!std::getline(in, line) || line != (format2 ? kFormat2Header : format3 ? kFormat3Header : kHeader))
+                     std::string(kFormat.line).substr(2) + ", 4, 3 and 2): run the evaluation again");
+  if (!std::getline(in, line) || line != format->header)
     throw InputError(path.string() + " is not a partreg evaluation CSV (header differs)");
-  const std::size_t columns = format2 ? kFormat2Columns : format3 ? kFormat3Columns : kColumns;
+  const std::size_t columns = format->columns;
   std::vector<EvalRow> rows;
   for (int number = 3; std::getline(in, line); ++number) {
     if (line.empty()) continue;
@@ -351,34 +364,71 @@ void own_part_tables(std::ostringstream& out, const std::vector<EvalRow>& rows) 
   }
 }
 
-// The seam gap of the part variants on clean observations: the mean gap over boundary points, then the
-// largest, each averaged over the rows (% of the model's diagonal). Nothing when no row has a seam.
-void seam_tables(std::ostringstream& out, const std::vector<EvalRow>& rows) {
+// Tables of a figure only some variants' rows carry (`has`), one per view kind: a row per category, a column
+// per such variant, each cell `cell_of` the clean rows of that category and variant. Nothing when no row has
+// it.
+template <class Has, class CellOf>
+void clean_figure_tables(std::ostringstream& out, const std::vector<EvalRow>& rows, const std::string& title,
+                         Has has, CellOf cell_of) {
   std::vector<std::string> variants;
   for (const std::string& variant : variants_of(rows))
     if (std::any_of(rows.begin(), rows.end(),
-                    [&](const EvalRow& r) { return r.variant == variant && r.seam; }))
+                    [&](const EvalRow& r) { return r.variant == variant && has(r); }))
       variants.push_back(variant);
   if (variants.empty()) return;
   for (bool partial : {false, true}) {
-    out << "\nSeam gap (core::seam_gap), mean / largest over the boundary points, % of the model's diagonal, "
-        << (partial ? "partial views" : "full views") << "\n\n";
+    out << "\n" << title << ", " << (partial ? "partial views" : "full views") << "\n\n";
     header_row(out, "category", variants);
     for (const std::string& category : categories_of(rows)) {
       out << "| " << category << " |";
-      const auto keep = [&](const std::string& variant) {
-        return [&, variant](const EvalRow& r) {
-          return r.category == category && r.variant == variant && is_partial(r) == partial && r.seam &&
-                 r.perturbation == Perturbation::none;
-        };
-      };
-      for (const std::string& variant : variants)
-        out << ' ' << cell(mean_of(rows, keep(variant), [](const EvalRow& r) { return r.seam->mean; }), 100)
-            << " / " << cell(mean_of(rows, keep(variant), [](const EvalRow& r) { return r.seam->max; }), 100)
-            << " |";
+      for (const std::string& variant : variants) {
+        std::vector<const EvalRow*> kept;
+        for (const EvalRow& r : rows)
+          if (r.category == category && r.variant == variant && is_partial(r) == partial && has(r) &&
+              r.perturbation == Perturbation::none)
+            kept.push_back(&r);
+        out << ' ' << cell_of(kept) << " |";
+      }
       out << "\n";
     }
   }
+}
+
+// Mean of `value` over `rows`; NaN for none.
+template <class Value>
+double mean_over(const std::vector<const EvalRow*>& rows, Value value) {
+  double sum = 0.0;
+  for (const EvalRow* row : rows) sum += value(*row);
+  return rows.empty() ? std::numeric_limits<double>::quiet_NaN() : sum / static_cast<double>(rows.size());
+}
+
+// The seam gap of the part variants on clean observations: the mean gap over boundary points, then the
+// largest, each averaged over the rows (% of the model's diagonal).
+void seam_tables(std::ostringstream& out, const std::vector<EvalRow>& rows) {
+  clean_figure_tables(
+      out, rows,
+      "Seam gap (core::seam_gap), mean / largest over the boundary points, % of the model's diagonal",
+      [](const EvalRow& r) { return r.seam.has_value(); },
+      [](const std::vector<const EvalRow*>& kept) {
+        return cell(mean_over(kept, [](const EvalRow& r) { return r.seam->mean; }), 100) + " / " +
+               cell(mean_over(kept, [](const EvalRow& r) { return r.seam->max; }), 100);
+      });
+}
+
+// How far the registrations stretched the canonical mesh (issue 15's limit on the shape-space grid is 3x):
+// the mean over the rows of each row's largest edge stretch, then the largest over the rows.
+void stretch_tables(std::ostringstream& out, const std::vector<EvalRow>& rows) {
+  clean_figure_tables(
+      out, rows,
+      "Largest edge stretch of the registered canonical mesh (core::mesh_stretch, deformed / canonical edge "
+      "length), mean / largest over the registrations",
+      [](const EvalRow& r) { return r.mesh_stretch.has_value(); },
+      [](const std::vector<const EvalRow*>& kept) {
+        double largest = kept.empty() ? std::numeric_limits<double>::quiet_NaN() : 0.0;
+        for (const EvalRow* r : kept) largest = std::max(largest, *r->mesh_stretch);
+        return cell(mean_over(kept, [](const EvalRow& r) { return *r.mesh_stretch; }), 1) + " / " +
+               cell(largest, 1);
+      });
 }
 
 void sweep_tables(std::ostringstream& out, const std::vector<EvalRow>& rows) {
@@ -527,6 +577,7 @@ std::string markdown_report(const std::vector<EvalRow>& rows) {
   part_tables(out, rows);
   own_part_tables(out, rows);
   seam_tables(out, rows);
+  stretch_tables(out, rows);
   sweep_tables(out, rows);
   timing_table(out, rows);
   return out.str();

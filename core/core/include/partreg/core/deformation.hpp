@@ -48,6 +48,12 @@ Points deform_points(const CategoryModel& model, const RegistrationResult& resul
 /// The canonical mesh deformed into the observed frame (same faces).
 Mesh deform_mesh(const CategoryModel& model, const RegistrationResult& result, const SeamBlend& blend = {});
 
+/// How far the registration stretched the canonical mesh: the largest ratio of an edge's length in
+/// deform_mesh to its canonical length (the pose moves lengths not at all, a fitted scale does). The
+/// shape-space grid's figure is space_grid_stretch (space_walk.hpp); this is any registration's, refinement
+/// included. 0 for a model without a canonical mesh.
+double mesh_stretch(const CategoryModel& model, const RegistrationResult& result);
+
 /// How far a registration's parts came apart: canonical points of one part within `radius` of another
 /// part's canonical points are boundary points; each is moved by both parts' fields and poses, and the gap is
 /// the distance between the two positions.

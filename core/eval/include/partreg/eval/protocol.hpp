@@ -89,6 +89,10 @@ struct EvalRow {
   /// Part variants only: how far apart neighbouring parts put the same boundary points (core::seam_gap,
   /// mean and largest, fractions of the model's diagonal); empty for holistic and the baselines.
   std::optional<core::SeamGap> seam;
+  /// Registrations of a model with a canonical mesh: how far the registration stretched it
+  /// (core::mesh_stretch, deformed / canonical edge length, the largest over the edges); empty for the
+  /// baselines.
+  std::optional<double> mesh_stretch;
 };
 
 /// Progress (core/progress.hpp): rows done, rows planned, and a line worth logging (empty when there is
