@@ -183,6 +183,12 @@ void run_register(const RegisterOptions& options) {
               << gap.points << " boundary points\n";
     report["seam_gap"] = {{"mean_normalised", gap.mean}, {"max_normalised", gap.max}, {"points", gap.points}};
   }
+  if (model.canonical_mesh.faces.rows() > 0) {
+    // Whether the mesh came through whole: the largest edge stretch of the deformed canonical mesh.
+    const double stretch = core::mesh_stretch(model, result);
+    std::cerr << "mesh stretch: largest edge " << stretch << "x its canonical length\n";
+    report["mesh_stretch"] = stretch;
+  }
   if (!options.truth_path.empty()) report["truth"] = truth_errors(model, observed, result, options);
   write_outputs(model, result, frames, options);
   write_json_or_stdout(report, options.json_path);
