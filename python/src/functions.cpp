@@ -171,6 +171,12 @@ void bind_registration(py::module_& m) {
       Release(), py::arg("model").none(false), py::arg("result").none(false),
       "The canonical mesh deformed into the observed frame (data units, same faces).");
   m.def(
+      "mesh_stretch",
+      [](const ModelPtr& model, const ResultPtr& result) { return core::mesh_stretch(*model, *result); },
+      Release(), py::arg("model").none(false), py::arg("result").none(false),
+      "How far the registration stretched the canonical mesh: the largest ratio of an edge's length in "
+      "deform_mesh to its canonical length (0 for a model without a mesh), as `partreg register` prints it.");
+  m.def(
       "deform_points",
       [](const ModelPtr& model, const ResultPtr& result, py::handle points) {
         const core::Points canonical_points = to_points(points, "points");

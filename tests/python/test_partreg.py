@@ -144,6 +144,20 @@ def test_deform_mesh_equals_the_command_line(partreg, model, registered, cli_dir
     assert np.allclose(mesh.vertices, vertices, rtol=0, atol=2e-9)
 
 
+def test_mesh_stretch_is_the_largest_edge_ratio_as_the_command_line_prints_it(partreg, model, registered,
+                                                                              cli_register):
+    mesh = partreg.deform_mesh(model, registered)
+    canonical = model.canonical_mesh  # normalised: the model's diagonal is 1
+    edges = np.vstack([mesh.faces[:, [0, 1]], mesh.faces[:, [1, 2]], mesh.faces[:, [2, 0]]])
+    before = np.linalg.norm(canonical.vertices[edges[:, 0]] - canonical.vertices[edges[:, 1]], axis=1)
+    after = np.linalg.norm(mesh.vertices[edges[:, 0]] - mesh.vertices[edges[:, 1]], axis=1) / model.scale
+    kept = before > 1e-9
+    stretch = partreg.mesh_stretch(model, registered)
+    assert stretch == pytest.approx(np.max(after[kept] / before[kept]), rel=1e-12)
+    assert stretch > 1.0, "a held-out mug is not the canonical: some edge lengthens"
+    assert stretch == pytest.approx(cli_register["mesh_stretch"], rel=1e-9)
+
+
 def test_transfer_frames_equals_the_command_line(partreg, model, registered, cli_dir, source_dir):
     frames = partreg.read_frames(source_dir / "assets" / "frames" / "mug_handle_grasp.json")
     moved = partreg.transfer_frames(model, registered, frames)
