@@ -184,7 +184,7 @@ void run_register(const RegisterOptions& options) {
     report["seam_gap"] = {{"mean_normalised", gap.mean}, {"max_normalised", gap.max}, {"points", gap.points}};
   }
   if (model.canonical_mesh.faces.rows() > 0) {
-    // Whether the mesh came through whole: the largest edge stretch of the deformed canonical mesh.
+    // How evenly the mesh came through: the largest edge stretch of the deformed canonical mesh.
     const double stretch = core::mesh_stretch(model, result);
     std::cerr << "mesh stretch: largest edge " << stretch << "x its canonical length\n";
     report["mesh_stretch"] = stretch;
