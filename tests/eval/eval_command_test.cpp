@@ -10,6 +10,8 @@
 #include <sstream>
 #include <tuple>
 
+#include "partreg/core/errors.hpp"
+#include "partreg/eval/protocol.hpp"
 #include "partreg/eval/report.hpp"
 #include "support/run_partreg.hpp"
 #include "support/temp_dir.hpp"
@@ -136,6 +138,27 @@ TEST(EvalCommand, NoBaselinesLeavesOnlyTheVariantsRows) {
   EXPECT_EQ(eval::read_rows_csv(dir / "clean" / "results.csv").size(), 2u);  // the clean full views only
   EXPECT_TRUE(eval::baselines_of(rows).empty());
   EXPECT_EQ(read_text(dir / "eval" / "tables.md").find("Against the baselines"), std::string::npos);
+}
+
+// The library refuses what the command line's checks keep from it: a negative sample count would otherwise be
+// a huge allocation.
+TEST(EvalSettings, SampleCountsOutOfRangeAreRefused) {
+  eval::EvalInput input;
+  input.category = "points";
+  for (const char* name : {"a", "b", "c"}) {
+    core::TrainingInstance instance;
+    instance.name = name;
+    instance.points = core::Points::Random(20, 3);
+    input.instances.push_back(instance);
+  }
+  eval::EvalSettings settings;
+  EXPECT_EQ(eval::tested_instances(input, settings).size(), 3u);
+  settings.truth_points = 0;  // the training sample: allowed
+  EXPECT_EQ(eval::tested_instances(input, settings).size(), 3u);
+  settings.truth_points = -1;
+  EXPECT_THROW(eval::tested_instances(input, settings), UsageError);
+  settings.truth_points = core::kTruthSamples, settings.full_view_points = 0;
+  EXPECT_THROW(eval::tested_instances(input, settings), UsageError);
 }
 
 // A mesh instance's truth is a dense sample of its own, parts included: the true shape's forward half (its

@@ -297,6 +297,11 @@ std::vector<std::string> tested_instances(const EvalInput& input, const EvalSett
     throw UsageError("shard index " + std::to_string(settings.shard) + " with a shard count of " +
                      std::to_string(settings.shard_count) +
                      ": the count must be at least 1 and the index in [0, count)");
+  if (settings.full_view_points < 1 || settings.truth_points < 0)
+    throw UsageError(
+        "a full view of " + std::to_string(settings.full_view_points) + " and a truth of " +
+        std::to_string(settings.truth_points) +
+        " surface samples: the full view needs at least 1, the truth 0 (the training sample) or more");
   std::vector<std::string> candidates;
   for (const core::TrainingInstance& instance : input.instances)
     if (instance.name != input.fixed_canonical) candidates.push_back(instance.name);

@@ -103,7 +103,8 @@ using EvalProgress = core::ProgressListener;
 std::vector<int> planned_levels(Perturbation kind, const Protocol& protocol);
 
 /// Which instances are tested (shard applied), in order; InputError when the category has too few instances
-/// for the protocol (fewer than 3, or fewer than 2 left to train on in a fold).
+/// for the protocol (fewer than 3, or fewer than 2 left to train on in a fold); UsageError for a fold count,
+/// a shard or a sample count (full view, truth) out of range.
 std::vector<std::string> tested_instances(const EvalInput& input, const EvalSettings& settings);
 
 /// Runs the protocol. Variants that need parts are dropped for a category without parts (reported through
