@@ -114,17 +114,6 @@ Eigen::MatrixXd weighted_gram(const SparseKernel& G, const Eigen::VectorXd& mass
   return gram;
 }
 
-// The rows `rows` of G, in that order.
-SparseKernel kernel_rows(const SparseKernel& G, const std::vector<int>& rows) {
-  std::vector<Eigen::Triplet<double>> entries;
-  for (std::size_t i = 0; i < rows.size(); ++i)
-    for (SparseKernel::InnerIterator a(G, rows[i]); a; ++a)
-      entries.emplace_back(static_cast<int>(i), static_cast<int>(a.col()), a.value());
-  SparseKernel selected(static_cast<Eigen::Index>(rows.size()), G.cols());
-  selected.setFromTriplets(entries.begin(), entries.end());
-  return selected;
-}
-
 // The rows of 0 .. count - 1 not in `rows` (ascending).
 std::vector<int> other_rows(Eigen::Index count, const std::vector<int>& rows) {
   std::vector<bool> listed(static_cast<std::size_t>(count), false);
@@ -203,7 +192,6 @@ RefinementField refine_fit(const Points& fitted, const Points& observed,
       fitted.rows(),
       static_cast<Eigen::Index>(std::ceil(kLandmarkDensity / (beta * beta))));
   const Points centres = select_rows(fitted, farthest_point_indices(fitted, static_cast<std::size_t>(count)));
-  const SparseKernel G = truncated_kernel(fitted, centres, beta);  // M x K
   const Eigen::MatrixXd G_centres = gaussian_kernel(centres, centres, beta);
 
   Points weights = Points::Zero(centres.rows(), 3);
@@ -224,18 +212,18 @@ RefinementField refine_fit(const Points& fitted, const Points& observed,
   control.max_iterations = settings.iterations;
   // The residual variance of the fit over the matched points, per axis (as CPD's sigma2 is).
   control.initial_sigma2 = std::max(kMinimumSigma2, squared(near).mean() / 3.0);
-  // The EM reads the observed rows of G only; the unobserved rows' share of the normal equations changes only
-  // by its common weight (the anchor below), so it is summed once here, not every iteration.
-  const SparseKernel G_seen = kernel_rows(G, seen);
-  const SparseKernel G_unseen = kernel_rows(G, other_rows(fitted.rows(), seen));
+  // G(fitted, centres) apart by rows: the EM reads the observed rows only; the unobserved rows' share of the
+  // normal equations changes only by its common weight (the anchor below), so it is summed once here.
+  const SparseKernel G_seen = truncated_kernel(fitted_seen, centres, beta);
+  const SparseKernel G_unseen =
+      truncated_kernel(select_rows(fitted, other_rows(fitted.rows(), seen)), centres, beta);
   const Eigen::MatrixXd unseen_gram = weighted_gram(G_unseen, Eigen::VectorXd::Ones(G_unseen.rows()));
   const detail::EmOutcome outcome =
       detail::run_em(matched, moved_seen, control, [&](const detail::Expectation& e, double sigma2) {
         // Unobserved points pull towards zero displacement (the space's prediction) with the anchor's
         // weight, in units of an observed point's mean posterior mass.
         const double anchor = settings.anchor * e.Np / static_cast<double>(seen.size());
-        const Points pull =
-            e.PX - e.P1.asDiagonal() * fitted_seen;  // P X - d(P1) Y, observed rows (0 elsewhere)
+        const Points pull = e.PX - e.P1.asDiagonal() * fitted_seen;  // P X - d(P1) Y over the observed rows
         // (G^T d(mass) G + lambda sigma2 G_LL) W = G^T pull: the normal equations of CPD's objective with
         // the field on K centres (the motion-coherence term is the field's kernel norm W^T G_LL W); mass is
         // P1 on observed rows and the anchor on the others.
