@@ -32,6 +32,7 @@ int main(int argc, char** argv) {
 #endif
   partreg::app::add_views_command(app);
   partreg::app::add_eval_command(app);
+  partreg::app::add_grasps_command(app);
   partreg::app::add_verbosity_flags(app);  // after every subcommand: it adds the flags to each
 
   try {

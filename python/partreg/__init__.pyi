@@ -253,3 +253,36 @@ def views(geometry: Union[Mesh, Float64Array], count: int = 42, width: int = 160
           fov_degrees: float = 45.0, margin: float = 1.1, threads: int = 0) -> list[View]: ...
 def measure_errors(deformed: Float64Array, part: IndexArray, part_names: Sequence[str], truth: Float64Array,
                    diagonal: Optional[float] = None, truth_part: Optional[IndexArray] = None) -> dict[str, Any]: ...
+
+# Grasps (docs/grasps.md).
+class Gripper:
+    max_aperture: float
+    pad_size: float
+    finger_depth: float
+    friction: float
+    relative_to_diagonal: bool
+    def __init__(self, max_aperture: float, pad_size: float = 0.02, finger_depth: float = 0.04,
+                 friction: float = 0.5, relative_to_diagonal: bool = False) -> None: ...
+
+class Grasp:
+    name: str
+    part: str
+    width: float
+    quality: float
+    def __init__(self, name: str, position: Float64Array, rotation: Float64Array, width: float,
+                 part: str = "", quality: float = 0.0) -> None: ...
+    @property
+    def position(self) -> Float64Array:
+        """(3,) midway between the contacts, data units."""
+    @property
+    def rotation(self) -> Float64Array:
+        """(3, 3): columns closing axis x, pad axis y, approach z."""
+
+def read_grasps(path: PathLike) -> tuple[list[Grasp], Optional[Gripper]]: ...
+def write_grasps(path: PathLike, grasps: Sequence[Grasp], gripper: Optional[Gripper] = None) -> None: ...
+def sample_grasps(vertices: Float64Array, faces: IndexArray, gripper: Gripper, count: int = 50,
+                  seed: int = 1) -> list[Grasp]: ...
+def check_grasps(vertices: Float64Array, faces: IndexArray, grasps: Sequence[Grasp],
+                 gripper: Gripper) -> list[dict[str, Any]]: ...
+def transfer_grasps(model: Model, result: RegistrationResult, grasps: Sequence[Grasp], gripper: Gripper,
+                    observed: Optional[Float64Array] = None) -> list[Grasp]: ...

@@ -12,4 +12,7 @@ void bind_types(pybind11::module_& module);
 /// read/write, train, register, deform, transfer, cpd, views, errors.
 void bind_functions(pybind11::module_& module);
 
+/// Gripper, Grasp, read/write_grasps, sample_grasps, check_grasps, transfer_grasps (grasps.cpp).
+void bind_grasps(pybind11::module_& module);
+
 }  // namespace partreg::python

@@ -18,5 +18,6 @@ void add_label_command(CLI::App& app);
 void add_render_commands(CLI::App& app);  ///< `render` and `figure` (headless OSMesa); only with ui/
 void add_views_command(CLI::App& app);
 void add_eval_command(CLI::App& app);
+void add_grasps_command(CLI::App& app);  ///< `grasps sample` and `grasps check`
 
 }  // namespace partreg::app

@@ -13,6 +13,8 @@
 
 #include "partreg/commands/commands.hpp"
 #include "partreg/commands/common.hpp"
+#include "partreg/commands/grasp_transfer.hpp"
+#include "partreg/io/grasps_file.hpp"
 #include "partreg/commands/console.hpp"
 #include "partreg/commands/setting_flags.hpp"
 #include "partreg/core/errors.hpp"
@@ -39,6 +41,8 @@ struct EvalOptions {
   std::vector<int> levels;          // 1-based indices of the paper's five levels; empty = the protocol's
   std::vector<std::string> sweeps;  // perturbation names; empty = the protocol's
   bool wide_rotation = false;
+  std::string grasps_path, gripper_path;  // --grasps FILE or --gripper alone: grasps judged on the truth
+  int grasp_count = 30;
   io::DatasetOptions dataset;
   eval::EvalSettings settings;
 };
@@ -120,6 +124,17 @@ void configure(EvalOptions& options) {
   if (settings.variants.empty()) throw UsageError("--variants needs at least one variant");
   settings.use_viewpoint = !options.no_viewpoint;
   settings.baselines = !options.no_baselines;
+  if (!options.grasps_path.empty() || !options.gripper_path.empty()) {
+    eval::GraspEvaluation grasps;
+    grasps.count = options.grasp_count;
+    if (!options.grasps_path.empty()) {
+      const GraspRequest request = read_grasp_request(options.grasps_path, options.gripper_path);
+      grasps.given = request.grasps, grasps.gripper = request.gripper;
+    } else {
+      grasps.gripper = io::read_gripper_file(options.gripper_path);
+    }
+    settings.grasps = grasps;
+  }
   if (settings.registration.initialisation.up) settings.training.up = *settings.registration.initialisation.up;
   parse_shard(options.shard, settings);
 }
@@ -170,6 +185,12 @@ void run_eval(EvalOptions& options) {
       {"threads", options.settings.threads},
       {"variants", options.variants},
       {"baselines", options.settings.baselines},
+      {"grasps", options.settings.grasps ? nlohmann::json{{"file", options.grasps_path},
+                                                          {"gripper", options.gripper_path},
+                                                          {"sampled_per_fold", options.grasps_path.empty()
+                                                                                   ? options.grasp_count
+                                                                                   : 0}}
+                                         : nlohmann::json(nullptr)},
       {"samples", options.dataset.points_per_instance},
       {"truth_samples", options.settings.truth_points},
       // The settings every row used (a row's variant and viewpoint are its own), and every fold's training.
@@ -244,6 +265,13 @@ void add_eval_command(CLI::App& app) {
   add_registration_flags(command, o->settings.registration, {"variant", "viewpoint"});
   // Every training setting of the folds' models; --up (above) is the category's up axis for both.
   add_training_flags(command, o->settings.training, {"up"});
+  command->add_option("--grasps", o->grasps_path,
+                      "grasps on the canonical (JSON) carried to every observation and judged on the true mesh");
+  command->add_option("--gripper", o->gripper_path,
+                      "gripper (JSON); alone, grasps are sampled on each fold's canonical mesh");
+  command->add_option("--grasp-count", o->grasp_count, "grasps sampled per fold without --grasps")
+      ->capture_default_str()
+      ->check(CLI::Range(1, 10000));
   command->add_flag("--no-viewpoint", o->no_viewpoint, "do not tell the registration where the camera was");
   command->add_flag("--no-baselines", o->no_baselines,
                     "skip the baseline rows (oracle-template, rigid-canonical, mean-shape, true-shape)");

@@ -20,6 +20,7 @@
 #include "partreg/io/cloud_io.hpp"
 #include "partreg/io/dataset.hpp"
 #include "partreg/io/frames_file.hpp"
+#include "partreg/commands/grasp_transfer.hpp"
 #include "partreg/io/mesh_io.hpp"
 #include "partreg/io/model_file.hpp"
 #include "partreg/io/output_format.hpp"
@@ -30,6 +31,7 @@ namespace {
 struct RegisterOptions {
   std::string model_path, observed_path, json_path, points_out, mesh_out;
   std::string frames_path, frames_out, truth_path;
+  std::string grasps_path, grasps_out, gripper_path;
   std::size_t mesh_samples = 3000;
   int threads = 0;
   core::RegistrationSettings settings;
@@ -137,16 +139,22 @@ void check_register_outputs(const RegisterOptions& options) {
   io::check_output(options.mesh_out, io::OutputKind::mesh, "--mesh-out");
   io::check_output(options.frames_out, io::OutputKind::json, "--frames-out");
   io::check_output(options.json_path, io::OutputKind::json, "--json");
+  io::check_output(options.grasps_out, io::OutputKind::json, "--grasps-out");
 }
 
 void run_register(const RegisterOptions& options) {
   if (options.frames_out.empty() != options.frames_path.empty())
     throw UsageError("--frames and --frames-out go together");
+  if (options.grasps_out.empty() != options.grasps_path.empty())
+    throw UsageError("--grasps and --grasps-out go together");
   check_register_outputs(options);
   const core::ThreadBudget budget(options.threads);
   // Frames are read before the work, so bad frames are refused before anything runs.
   const std::vector<core::Frame> frames =
       options.frames_path.empty() ? std::vector<core::Frame>{} : io::read_frames_file(options.frames_path);
+  const std::optional<GraspRequest> grasps =
+      options.grasps_path.empty() ? std::nullopt
+                                  : std::optional(read_grasp_request(options.grasps_path, options.gripper_path));
   const core::CategoryModel model = io::read_model(options.model_path);
   const core::Points observed = read_points_logged(options.observed_path, options.mesh_samples, 1);
   ProgressDisplay progress({"spaces fitted", /*lines_are_detail=*/true, /*log_every_percent=*/0});
@@ -191,6 +199,7 @@ void run_register(const RegisterOptions& options) {
   }
   if (!options.truth_path.empty()) report["truth"] = truth_errors(model, observed, result, options);
   write_outputs(model, result, frames, options);
+  if (grasps) write_carried_grasps(model, result, observed, *grasps, options.grasps_out);
   write_json_or_stdout(report, options.json_path);
 }
 
@@ -209,6 +218,10 @@ void add_register_command(CLI::App& app) {
   command->add_option("--mesh-out", o->mesh_out, "the deformed canonical mesh (.obj, .ply, .vtp)");
   command->add_option("--frames", o->frames_path, "frames attached to the canonical (JSON)");
   command->add_option("--frames-out", o->frames_out, "where the transferred frames go");
+  command->add_option("--grasps", o->grasps_path, "parallel-jaw grasps on the canonical (JSON, docs/grasps.md)");
+  command->add_option("--grasps-out", o->grasps_out,
+                      "where the grasps go: carried, re-seated on the registered object, ranked");
+  command->add_option("--gripper", o->gripper_path, "gripper file (default: the grasps file's own)");
   add_registration_flags(command, o->settings);
   add_threads_flag(command, o->threads);
   command->add_option(

@@ -2,6 +2,8 @@
 
 #include <Eigen/SVD>
 #include <algorithm>
+#include <cmath>
+#include <map>
 
 #include "partreg/core/errors.hpp"
 #include "partreg/core/gaussian_kernel.hpp"
@@ -14,6 +16,13 @@ namespace partreg::core {
 namespace {
 
 using detail::smoothstep;
+
+// Canonical points a frame's region takes at least, nearest first, so a sparse neighbourhood still fixes a
+// rotation.
+constexpr int kMinimumRegionPoints = 8;
+// The pose rotation's share in the region's cross-covariance: enough to fix an axis the region leaves free,
+// too little to turn a region that fixes all three.
+constexpr double kPosePrior = 1e-3;
 
 // The spaces whose fields move the points: holistic alone, or every part.
 std::vector<std::size_t> active_spaces(const RegistrationResult& result) {
@@ -162,31 +171,81 @@ SeamGap training_seam_gap(const CategoryModel& model, double radius) {
   return gap;
 }
 
-std::vector<Frame> transfer_frames(const CategoryModel& model, const RegistrationResult& result,
-                                   const std::vector<Frame>& frames) {
-  const std::vector<std::size_t> spaces = active_spaces(result);
-  std::vector<Frame> moved;
-  for (const Frame& frame : frames) {
-    Points position(1, 3);
-    position.row(0) = frame.position.transpose();
-    const Points normalised = model.normalization.apply(position);
-    // The rotation follows the space that dominates at the frame (no averaging of rotations).
-    Eigen::Index dominant = 0;
-    blend_weights(model, result, spaces, normalised, {}).row(0).maxCoeff(&dominant);
-    const SpaceFit& fit = result.fits[spaces[static_cast<std::size_t>(dominant)]];
-    const ShapeSpace& space = space_of(model, fit);
-    const Eigen::Matrix3d jacobian =
-        Eigen::Matrix3d::Identity() + kernel_field_jacobian(normalised.row(0).transpose(), space.canonical,
-                                                            space.weights(fit.latent), space.beta);
-    const Eigen::Matrix3d pose_rotation = fit.T_observed_canonical.topLeftCorner<3, 3>() / fit.scale;
-    // The refinement turns the frame by its own Jacobian where the space put it, after the pose.
-    const Eigen::Vector3d by_space = moved_by(model, fit, normalised).row(0).transpose();
-    const Eigen::Matrix3d refinement = Eigen::Matrix3d::Identity() + result.refinement.jacobian_at(by_space);
-    Frame out = frame;
-    out.position = deform_points(model, result, position).row(0).transpose();
-    out.rotation = nearest_rotation(refinement) * pose_rotation * nearest_rotation(jacobian) * frame.rotation;
-    moved.push_back(out);
+std::vector<Region> frame_regions(const CategoryModel& model, const std::vector<Points>& anchor_sets,
+                                  double radius) {
+  if (!(radius > 0.0)) throw UsageError("a frame's region radius must be positive");
+  const KdTree tree(model.canonical);
+  std::vector<Region> regions;
+  for (const Points& anchor_set : anchor_sets) {
+    const Points anchors = model.normalization.apply(anchor_set);
+    std::map<int, double> nearest;  // row -> squared distance to the nearest anchor
+    std::vector<std::pair<int, double>> near;
+    for (Eigen::Index a = 0; a < anchors.rows(); ++a) {
+      const Eigen::Vector3d anchor = anchors.row(a).transpose();
+      tree.radius(anchor, 3.0 * radius, near);
+      for (const auto& entry : tree.nearest_k(anchor, kMinimumRegionPoints)) near.push_back(entry);
+      for (const auto& [row, squared] : near) {
+        const auto found = nearest.find(row);
+        if (found == nearest.end() || squared < found->second) nearest[row] = squared;
+      }
+    }
+    Region region;
+    region.weights.resize(static_cast<Eigen::Index>(nearest.size()));
+    for (const auto& [row, squared] : nearest) {
+      region.weights[static_cast<Eigen::Index>(region.rows.size())] = std::exp(-squared / (2.0 * radius * radius));
+      region.rows.push_back(row);
+    }
+    regions.push_back(std::move(region));
   }
+  return regions;
+}
+
+Eigen::Matrix3d region_motion(const Points& before, const Points& after, const Eigen::VectorXd& weights,
+                              const Eigen::Matrix3d& free_axes_rotation) {
+  const auto centred = [&](const Points& points) -> Points {
+    const Eigen::RowVector3d mean = (weights.asDiagonal() * points).colwise().sum() / weights.sum();
+    return points.rowwise() - mean;
+  };
+  // max tr(R^T M) with M = sum w q p^T is the Kabsch rotation; a small share of another rotation in M
+  // decides the axes the region leaves free (a straight bar's own axis) and nothing else.
+  Eigen::Matrix3d cross = centred(after).transpose() * weights.asDiagonal() * centred(before);
+  cross += kPosePrior * cross.norm() * free_axes_rotation;
+  return nearest_rotation(cross);
+}
+
+std::vector<Eigen::Matrix3d> region_rotations(const CategoryModel& model, const RegistrationResult& result,
+                                              const std::vector<Points>& anchor_sets, double radius) {
+  const std::vector<std::size_t> spaces = active_spaces(result);
+  const std::vector<Region> regions = frame_regions(model, anchor_sets, radius);
+  std::vector<int> all_rows;  // every region moves in one deform_points
+  for (const Region& region : regions) all_rows.insert(all_rows.end(), region.rows.begin(), region.rows.end());
+  const Points before = model.normalization.undo(select_rows(model.canonical, all_rows));
+  const Points after = deform_points(model, result, before);
+  const Eigen::Matrix3d pose_rotation =
+      nearest_rotation(result.fits[spaces.front()].T_observed_canonical.topLeftCorner<3, 3>());
+  std::vector<Eigen::Matrix3d> rotations;
+  Eigen::Index offset = 0;
+  for (const Region& region : regions) {
+    const auto count = static_cast<Eigen::Index>(region.rows.size());
+    rotations.push_back(region_motion(before.middleRows(offset, count), after.middleRows(offset, count),
+                                      region.weights, pose_rotation));
+    offset += count;
+  }
+  return rotations;
+}
+
+std::vector<Frame> transfer_frames(const CategoryModel& model, const RegistrationResult& result,
+                                   const std::vector<Frame>& frames, double radius) {
+  if (frames.empty()) return {};
+  Points positions(static_cast<Eigen::Index>(frames.size()), 3);
+  for (std::size_t f = 0; f < frames.size(); ++f) positions.row(static_cast<Eigen::Index>(f)) = frames[f].position.transpose();
+  const Points carried = deform_points(model, result, positions);
+  std::vector<Frame> moved = frames;
+  for (std::size_t f = 0; f < frames.size(); ++f) moved[f].position = carried.row(static_cast<Eigen::Index>(f)).transpose();
+  std::vector<Points> anchors;
+  for (const Frame& frame : frames) anchors.push_back(frame.position.transpose());
+  const std::vector<Eigen::Matrix3d> turns = region_rotations(model, result, anchors, radius);
+  for (std::size_t f = 0; f < frames.size(); ++f) moved[f].rotation = turns[f] * frames[f].rotation;
   return moved;
 }
 

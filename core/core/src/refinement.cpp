@@ -42,6 +42,9 @@ constexpr double kMaximumOutlierWeight = 0.5;
 constexpr double kStrayDistance = 0.1;
 constexpr double kSurfaceRadius = 0.05;
 constexpr int kSurfaceNeighbours = 3;
+// Fitted points whose normals blend into the direction a point may move in (refinement.hpp): about the
+// points within one canonical spacing on either side.
+constexpr int kNormalNeighbours = 6;
 
 // The volume of the points' axis-aligned box, at least kMinimumVolume (a flat or degenerate set).
 double bounding_box_volume(const Points& points) {
@@ -128,18 +131,34 @@ std::vector<int> other_rows(Eigen::Index count, const std::vector<int>& rows) {
 
 Points RefinementField::displacement_at(const Points& positions) const {
   if (empty()) return Points::Zero(positions.rows(), 3);
-  return apply_kernel(positions, centres, weights, beta);
-}
-
-Eigen::Matrix3d RefinementField::jacobian_at(const Eigen::Vector3d& position) const {
-  if (empty()) return Eigen::Matrix3d::Zero();
-  return kernel_field_jacobian(position, centres, weights, beta);
+  const Points field = apply_kernel(positions, centres, weights, beta);
+  if (surface.rows() == 0) return field;
+  // The normal near p is a blend of its nearest fitted points' projectors n n^T (sign-free, and smooth
+  // where the nearest point changes), weighted by a Gaussian of the distance on the scale of their spacing.
+  const KdTree tree(surface);
+  const int count = static_cast<int>(std::min<Eigen::Index>(kNormalNeighbours, surface.rows()));
+  Points projected(positions.rows(), 3);
+  for (Eigen::Index i = 0; i < positions.rows(); ++i) {
+    const std::vector<std::pair<int, double>> near = tree.nearest_k(positions.row(i).transpose(), count);
+    const double scale2 = std::max(near.back().second, 1e-300);
+    Eigen::Matrix3d projector = Eigen::Matrix3d::Zero();
+    double total = 0.0;
+    for (const auto& [row, squared] : near) {
+      const double weight = std::exp(-squared / scale2);
+      const Eigen::Vector3d n = surface_normals.row(row).transpose();
+      projector += weight * n * n.transpose();
+      total += weight;
+    }
+    projected.row(i) = (projector / total * field.row(i).transpose()).transpose();
+  }
+  return projected;
 }
 
 RefinementField RefinementField::transformed(double scale, const Eigen::Vector3d& offset) const {
   RefinementField field = *this;
   if (empty()) return field;
   field.centres = (centres * scale).rowwise() + offset.transpose();
+  if (surface.rows() > 0) field.surface = (surface * scale).rowwise() + offset.transpose();
   field.weights = weights * scale;  // the kernel values do not change: distances and beta scale alike
   field.beta = beta * scale;
   return field;
@@ -236,6 +255,7 @@ RefinementField refine_fit(const Points& fitted, const Points& observed,
   field.centres = centres;
   field.weights = weights;
   field.beta = beta;  // frame units, as centres and weights (transformed() rescales it, not width)
+  if (!settings.slide) field.surface = fitted, field.surface_normals = surface.normals;
   field.iterations = outcome.iterations;
   const Eigen::VectorXd movement = field.displacement_at(fitted).rowwise().norm();
   field.mean_movement = movement.mean();

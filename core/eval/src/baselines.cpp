@@ -173,7 +173,9 @@ std::vector<BaselineScore> score_baselines(const core::CategoryModel& model,
         shape.is_canonical ? score(shape.tree, alignment.T_observed_template, model.canonical_part,
                                    model.part_names, observation, observation.truth_of_canonical_row)
                            : score(shape.tree, alignment.T_observed_template, {}, {}, observation, nullptr);
-    if (shape.is_canonical) canonical = {Baseline::rigid_canonical, errors, shape.name, seconds_since(start)};
+    if (shape.is_canonical)
+      canonical = {Baseline::rigid_canonical, errors, shape.name, seconds_since(start),
+                   alignment.T_observed_template};
     if (errors.symmetric_rms_per_diagonal < oracle.errors.symmetric_rms_per_diagonal)
       oracle.errors = errors, oracle.shape = shape.name;
   }

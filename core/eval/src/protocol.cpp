@@ -1,5 +1,7 @@
 #include "partreg/eval/protocol.hpp"
 
+#include "grasp_scoring.hpp"
+
 #include <tbb/parallel_for.h>
 #include <tbb/task_arena.h>
 
@@ -164,6 +166,8 @@ std::optional<core::Points> true_correspondents(const EvalInput& input, const co
 struct FoldContext {
   const core::CategoryModel& model;
   const std::vector<Template>& templates;  // empty without baselines
+  const std::vector<core::Grasp>& grasps;  // the canonical's grasps; empty without EvalSettings::grasps
+  const core::Gripper& gripper;            // EvalSettings::grasps' gripper in the fold's data units
 };
 
 std::size_t rows_per_job(const EvalSettings& settings, const std::vector<core::Variant>& variants) {
@@ -221,11 +225,23 @@ void run_job(const EvalInput& input, const EvalSettings& settings, const FoldCon
                    errors,
                    seconds,
                    std::nullopt,
+                   std::nullopt,
                    std::nullopt};
   };
   // The truth's own parts (part files, or a labels file of its own) score each part against its own.
   const bool truth_has_parts =
       !model.part_names.empty() && test.truth.part.size() == test.truth.points.rows();
+  // The gripper test runs on the true mesh where the instance has one.
+  const bool judge_grasps = !fold.grasps.empty() && instance.mesh.faces.rows() > 0;
+  std::optional<MeshRays> true_mesh;
+  if (judge_grasps) {
+    core::Mesh moved = instance.mesh;
+    moved.vertices = moved_by(instance.mesh.vertices, perturbed.T_perturbed_original);
+    true_mesh.emplace(moved);
+  }
+  const detail::GraspJudge judge{&fold.grasps,  &fold.gripper,
+                                 true_mesh ? &*true_mesh : nullptr, &truth, test.diagonal, &perturbed.points,
+                                 truth_of_row ? &*truth_of_row : nullptr};
   std::vector<core::RegistrationResult> results;
   for (std::size_t v = 0; v < variants.size(); ++v) {
     registration.variant = variants[v];
@@ -238,6 +254,7 @@ void run_job(const EvalInput& input, const EvalSettings& settings, const FoldCon
                  results[v].seconds);
     if (variants[v] != core::Variant::holistic) rows[v].seam = core::seam_gap(model, results[v]);
     if (model.canonical_mesh.faces.rows() > 0) rows[v].mesh_stretch = core::mesh_stretch(model, results[v]);
+    if (judge_grasps) rows[v].grasps = detail::registration_grasps(judge, model, results[v]);
   }
   if (!settings.baselines) return;
   // The full view's sample is independent of the truth's (for cloud data it is the truth itself).
@@ -252,9 +269,12 @@ void run_job(const EvalInput& input, const EvalSettings& settings, const FoldCon
   const std::vector<Eigen::Matrix3d> starts =
       start_rotations(settings.registration.initialisation.restarts, up);
   const std::vector<BaselineScore> scores = score_baselines(model, fold.templates, seen, starts);
-  for (std::size_t b = 0; b < scores.size(); ++b)
-    rows[variants.size() + b] =
-        make_row(core::enum_name(scores[b].baseline), scores[b].errors, scores[b].seconds);
+  for (std::size_t b = 0; b < scores.size(); ++b) {
+    EvalRow& row = rows[variants.size() + b];
+    row = make_row(core::enum_name(scores[b].baseline), scores[b].errors, scores[b].seconds);
+    if (judge_grasps && scores[b].baseline == Baseline::rigid_canonical)
+      row.grasps = detail::rigid_grasps(judge, model, scores[b].T_observed_shape);
+  }
 }
 
 }  // namespace
@@ -385,7 +405,12 @@ std::vector<EvalRow> run_evaluation(const EvalInput& input, const EvalSettings& 
         core::train_category(input.category, instances, input.part_names, training);
     const std::vector<Template> templates =
         settings.baselines ? fold_templates(model, instances) : std::vector<Template>{};
-    const FoldContext context{model, templates};
+    const core::Gripper gripper =
+        settings.grasps ? settings.grasps->gripper.in_units(model.normalization.scale) : core::Gripper{};
+    const std::vector<core::Grasp> grasps =
+        settings.grasps ? detail::fold_grasps(model, gripper, *settings.grasps, mix(settings.seed, fold + 1))
+                        : std::vector<core::Grasp>{};
+    const FoldContext context{model, templates, grasps, gripper};
     if (progress) {
       std::ostringstream line;
       line << "fold " << fold << ": trained on " << model.training.instances.size() << " instances in "

@@ -9,6 +9,7 @@
 #include <set>
 #include <sstream>
 
+#include "grasp_report.hpp"
 #include "partreg/core/errors.hpp"
 #include "partreg/core/registration_settings.hpp"
 #include "partreg/eval/baselines.hpp"
@@ -34,12 +35,16 @@ struct CsvFormat {
 };
 constexpr std::size_t kFormat2Columns = 24, kFormat3Columns = 26, kFormat4Columns = 28;
 // The format written first, then the older ones read.
+#define PARTREG_FORMAT_5_COLUMNS PARTREG_FORMAT_4_COLUMNS ",mesh_stretch_max"
+constexpr std::size_t kFormat5Columns = kFormat4Columns + 1;
 constexpr CsvFormat kFormats[] = {
-    {"# partreg evaluation rows, format 5", PARTREG_FORMAT_4_COLUMNS ",mesh_stretch_max",
-     kFormat4Columns + 1},
+    {"# partreg evaluation rows, format 6", PARTREG_FORMAT_5_COLUMNS PARTREG_GRASP_COLUMNS,
+     kFormat5Columns + detail::kGraspColumnCount},
+    {"# partreg evaluation rows, format 5", PARTREG_FORMAT_5_COLUMNS, kFormat5Columns},
     {"# partreg evaluation rows, format 4", PARTREG_FORMAT_4_COLUMNS, kFormat4Columns},
     {"# partreg evaluation rows, format 3", PARTREG_FORMAT_3_COLUMNS, kFormat3Columns},
     {"# partreg evaluation rows, format 2", PARTREG_FORMAT_2_COLUMNS, kFormat2Columns}};
+#undef PARTREG_FORMAT_5_COLUMNS
 #undef PARTREG_FORMAT_4_COLUMNS
 #undef PARTREG_FORMAT_3_COLUMNS
 #undef PARTREG_FORMAT_2_COLUMNS
@@ -97,6 +102,7 @@ EvalRow parse_row(const std::vector<std::string>& f) {
     row.errors.own_part_rms_per_diagonal = parse_parts(f[27]);
   }
   if (f.size() > kFormat4Columns && !f[28].empty()) row.mesh_stretch = std::stod(f[28]);
+  detail::parse_grasp_fields(f, kFormat5Columns, row);
   return row;
 }
 
@@ -207,7 +213,7 @@ void write_rows_csv(const std::filesystem::path& path, const std::vector<EvalRow
     if (r.errors.own_part_rms_mean_per_diagonal) out << *r.errors.own_part_rms_mean_per_diagonal;
     out << ',' << parts_field(r.errors.own_part_rms_per_diagonal) << ',';
     if (r.mesh_stretch) out << *r.mesh_stretch;
-    out << '\n';
+    out << detail::grasp_fields(r) << '\n';
   }
   if (!out.flush()) throw InputError("cannot write " + path.string());
 }
@@ -578,6 +584,7 @@ std::string markdown_report(const std::vector<EvalRow>& rows) {
   own_part_tables(out, rows);
   seam_tables(out, rows);
   stretch_tables(out, rows);
+  detail::grasp_tables(out, rows);
   sweep_tables(out, rows);
   timing_table(out, rows);
   return out.str();

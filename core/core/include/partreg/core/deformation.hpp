@@ -73,9 +73,37 @@ SeamGap seam_gap(const CategoryModel& model, const RegistrationResult& result, d
 /// can represent attached parts (training's seam band), several percent without it. Zeros without parts.
 SeamGap training_seam_gap(const CategoryModel& model, double radius = 0.03);
 
-/// Frames carried over: the position moves like a point; the rotation turns by the local Jacobian of the
-/// deformation (I + dv/dz), orthonormalised by polar decomposition, and then by the pose.
+/// A region of the canonical around some anchors: rows of CategoryModel::canonical within three `radius` of
+/// an anchor (and at least the 8 nearest each), each weighted by a Gaussian of width `radius` (normalised
+/// length) of its distance to the nearest anchor (category data frame).
+struct Region {
+  std::vector<int> rows;
+  Eigen::VectorXd weights;
+};
+std::vector<Region> frame_regions(const CategoryModel& model, const std::vector<Points>& anchor_sets,
+                                  double radius);
+
+/// The best rotation (weighted Kabsch, no scale) taking `before` to `after` (rows paired); where the points
+/// leave axes free (a line), the turn about them is `free_axes_rotation`'s.
+Eigen::Matrix3d region_motion(const Points& before, const Points& after, const Eigen::VectorXd& weights,
+                              const Eigen::Matrix3d& free_axes_rotation);
+
+/// How a registration turns regions of the canonical, one rotation per set of anchors: the best rotation
+/// (weighted Kabsch, no scale) taking the canonical points near a set's anchors (category data frame) to
+/// where deform_points puts them, each weighted by a Gaussian of its distance to the nearest anchor of width
+/// `radius` (normalised length). A region at the scale of what is attached (a grasp's finger contacts) turns
+/// as a whole, where the pointwise Jacobian inside a thin wall turned frames by tens of degrees. A region
+/// too thin to fix a rotation (points on a line) keeps the pose's turn about the axis it leaves free.
+std::vector<Eigen::Matrix3d> region_rotations(const CategoryModel& model, const RegistrationResult& result,
+                                              const std::vector<Points>& anchor_sets, double radius);
+
+/// The width of the region a frame's rotation is read from (normalised length): about two canonical
+/// spacings at M = 1000 points, the size of a finger pad on a mug.
+inline constexpr double kFrameRegionRadius = 0.04;
+
+/// Frames carried over: the position moves like a point (deform_points); the rotation turns with the region
+/// around it (region_rotations, `radius` in normalised length).
 std::vector<Frame> transfer_frames(const CategoryModel& model, const RegistrationResult& result,
-                                   const std::vector<Frame>& frames);
+                                   const std::vector<Frame>& frames, double radius = kFrameRegionRadius);
 
 }  // namespace partreg::core

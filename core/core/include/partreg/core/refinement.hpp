@@ -21,6 +21,9 @@ struct RefinementField {
   Points centres;  ///< kernel centres c_l: landmarks of the space fit's points (frame units); none = no field
   Points weights;  ///< w_l, one row per centre (frame units)
   double beta = 0.0;  ///< kernel width (frame units)
+  /// Where the field may move points: the space fit's points (frame units) and a unit normal per point.
+  /// Empty when RefinementSettings::slide is on: the field then moves points in every direction.
+  Points surface, surface_normals;
   int points = 0;     ///< fitted points refined
   int observed = 0;   ///< of those, the ones treated as observed (pulled to the data)
   /// The observation's noise (normalised length): the median over patches of the fit of the spread of the
@@ -40,10 +43,10 @@ struct RefinementField {
   double mean_movement = 0.0, max_movement = 0.0;
 
   bool empty() const { return centres.rows() == 0; }
-  /// v(p) at every row of `positions` (frame units); zeros when empty.
+  /// The displacement at every row of `positions` (frame units); zeros when empty. Without `surface`, the
+  /// field v(p); with it, v(p) projected on the surface normal near p, so a material point moves towards
+  /// the observed surface but never along it (what is attached to it stays attached).
   Points displacement_at(const Points& positions) const;
-  /// dv/dp at `position` (3 x 3): frames turn with I + this.
-  Eigen::Matrix3d jacobian_at(const Eigen::Vector3d& position) const;
   /// The same field in the frame p' = scale p + offset (scale > 0).
   RefinementField transformed(double scale, const Eigen::Vector3d& offset) const;
 };

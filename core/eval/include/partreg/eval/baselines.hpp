@@ -105,6 +105,8 @@ struct BaselineScore {
   core::TruthErrors errors;
   std::string shape;     ///< the template used (the oracle's choice), or "mean" for the mean shape
   double seconds = 0.0;  ///< alignment and scoring time
+  /// The rigid canonical's alignment (canonical data frame -> observed frame); identity for the others.
+  Eigen::Matrix4d T_observed_shape = Eigen::Matrix4d::Identity();
 };
 
 /// What the baselines see of one observation and its truth.

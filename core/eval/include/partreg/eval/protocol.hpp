@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "partreg/core/deformation.hpp"
+#include "partreg/core/grasp.hpp"
 #include "partreg/core/registration.hpp"
 #include "partreg/core/training.hpp"
 #include "partreg/core/truth_errors.hpp"
@@ -52,8 +53,18 @@ struct EvalInput {
   std::map<std::string, core::Points> correspondences;
 };
 
+/// Grasps the evaluation carries and judges (gripper.hpp): every registration row and the rigid canonical's
+/// carry the same canonical grasps, and the gripper test runs them on the true mesh.
+struct GraspEvaluation {
+  core::Gripper gripper;
+  /// Grasps on the canonical (category data frame); empty: `count` sampled on each fold's canonical mesh.
+  std::vector<core::Grasp> given;
+  int count = 30;  ///< grasps sampled per fold when none are given
+};
+
 struct EvalSettings {
   Protocol protocol;
+  std::optional<GraspEvaluation> grasps;  ///< none: no grasp figures
   std::vector<core::Variant> variants = {core::Variant::holistic, core::Variant::partwise,
                                          core::Variant::hol_part};
   core::TrainingSettings training;
@@ -69,6 +80,20 @@ struct EvalSettings {
   int shard = 0;                ///< this run's shard, in [0, shard_count)
   int shard_count = 1;          ///< tested instances are dealt to shards round-robin
   std::uint64_t seed = 1;
+};
+
+/// How the grasps carried onto one observation fared on the true mesh (gripper.hpp's test).
+struct GraspScore {
+  int count = 0;  ///< grasps carried
+  int held = 0;   ///< of those, held on the true mesh
+  std::map<std::string, std::pair<int, int>> by_part;  ///< part -> (held, count); "" for grasps without one
+  /// Mean distance from the carried contacts to the true surface (fraction of the truth's diagonal).
+  double contact_per_diagonal = 0.0;
+  /// Median angle of the carried closing axis to the true contact normals where the fingers touched (degrees).
+  double axis_angle_degrees = 0.0;
+  /// Synthetic categories (ground-truth correspondences): the carried grasps' rotation against the true
+  /// motion of the same canonical region, median and 90th percentile (degrees).
+  std::optional<double> frame_error_median_degrees, frame_error_p90_degrees;
 };
 
 /// One registration of the protocol, or one baseline on the same observation.
@@ -93,6 +118,8 @@ struct EvalRow {
   /// (core::mesh_stretch, deformed / canonical edge length, the largest over the edges); empty for the
   /// baselines.
   std::optional<double> mesh_stretch;
+  /// With EvalSettings::grasps, for the variants and the rigid canonical: the carried grasps on the truth.
+  std::optional<GraspScore> grasps;
 };
 
 /// Progress (core/progress.hpp): rows done, rows planned, and a line worth logging (empty when there is
