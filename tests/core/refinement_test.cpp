@@ -242,8 +242,15 @@ TEST(Refinement, MeshesPointsAndFramesFollowIt) {
   without.refinement = RefinementField();
   EXPECT_GT((deform_points(setup().model, without, canonical) - fine.deformed).rowwise().norm().maxCoeff(),
             0.01 * setup().diagonal);
+  // A frame is a material point: it moves with the field's normal part only, never further than the surface.
   const std::vector<Frame> frames = transfer_frames(setup().model, fine, {Frame{"grasp", canonical.row(0)}});
-  EXPECT_LT((frames[0].position - fine.deformed.row(0).transpose()).norm(), 1e-9 * setup().diagonal);
+  const Points material = deform_points(setup().model, fine, canonical, {}, Follow::material);
+  EXPECT_LT((frames[0].position - material.row(0).transpose()).norm(), 1e-9 * setup().diagonal);
+  const Eigen::VectorXd surface_step = (moved - deform_points(setup().model, without, canonical)).rowwise().norm();
+  const Eigen::VectorXd material_step = (material - deform_points(setup().model, without, canonical)).rowwise().norm();
+  EXPECT_TRUE((material_step.array() <= surface_step.array() + 1e-12).all());
+  // ... and not nowhere: the refinement reaches the surface along the normals.
+  EXPECT_GT(material_step.maxCoeff(), 0.5 * surface_step.maxCoeff());
   EXPECT_LT((frames[0].rotation.transpose() * frames[0].rotation - Eigen::Matrix3d::Identity()).norm(), 1e-9);
 }
 

@@ -34,7 +34,7 @@ double diagonal_of(const core::Mesh& mesh) {
 
 GraspSurface read_surface(const std::string& path) {
   GraspSurface surface;
-  if (io::is_mesh_file(path)) {
+  if (std::filesystem::path(path).extension() != ".prm") {  // the model files `partreg train` writes
     surface.mesh = io::read_mesh(path);
     surface.diagonal = diagonal_of(surface.mesh);
     return surface;

@@ -95,7 +95,7 @@ Eigen::MatrixXd seam_weights(const std::vector<const ShapeSpace*>& spaces, const
 }
 
 Points deform_points(const CategoryModel& model, const RegistrationResult& result,
-                     const Points& canonical_points, const SeamBlend& blend) {
+                     const Points& canonical_points, const SeamBlend& blend, Follow follow) {
   const Points normalised = model.normalization.apply(canonical_points);
   const std::vector<std::size_t> spaces = active_spaces(result);
   const Eigen::MatrixXd weights = blend_weights(model, result, spaces, normalised, blend);
@@ -104,7 +104,8 @@ Points deform_points(const CategoryModel& model, const RegistrationResult& resul
     moved += weights.col(static_cast<Eigen::Index>(s)).asDiagonal() *
              moved_by(model, result.fits[spaces[s]], normalised);
   // The refinement's field lives where the space put the points (observed frame).
-  return moved + result.refinement.displacement_at(moved);
+  return moved + (follow == Follow::surface ? result.refinement.displacement_at(moved)
+                                            : result.refinement.material_displacement_at(moved));
 }
 
 Mesh deform_mesh(const CategoryModel& model, const RegistrationResult& result, const SeamBlend& blend) {
@@ -220,7 +221,7 @@ std::vector<Eigen::Matrix3d> region_rotations(const CategoryModel& model, const 
   std::vector<int> all_rows;  // every region moves in one deform_points
   for (const Region& region : regions) all_rows.insert(all_rows.end(), region.rows.begin(), region.rows.end());
   const Points before = model.normalization.undo(select_rows(model.canonical, all_rows));
-  const Points after = deform_points(model, result, before);
+  const Points after = deform_points(model, result, before, {}, Follow::material);
   const Eigen::Matrix3d pose_rotation =
       nearest_rotation(result.fits[spaces.front()].T_observed_canonical.topLeftCorner<3, 3>());
   std::vector<Eigen::Matrix3d> rotations;
@@ -239,7 +240,7 @@ std::vector<Frame> transfer_frames(const CategoryModel& model, const Registratio
   if (frames.empty()) return {};
   Points positions(static_cast<Eigen::Index>(frames.size()), 3);
   for (std::size_t f = 0; f < frames.size(); ++f) positions.row(static_cast<Eigen::Index>(f)) = frames[f].position.transpose();
-  const Points carried = deform_points(model, result, positions);
+  const Points carried = deform_points(model, result, positions, {}, Follow::material);
   std::vector<Frame> moved = frames;
   for (std::size_t f = 0; f < frames.size(); ++f) moved[f].position = carried.row(static_cast<Eigen::Index>(f)).transpose();
   std::vector<Points> anchors;

@@ -44,8 +44,8 @@ Eigen::Matrix3d grasp_axes(const Eigen::Vector3d& closing, const Eigen::Vector3d
 std::vector<Grasp> transfer_grasps(const CategoryModel& model, const RegistrationResult& result,
                                    const std::vector<Grasp>& grasps, const Gripper& gripper) {
   validate(gripper);
-  // The pad's size as a region width, in normalised length (the category's diagonal is 1).
-  const double radius = std::max(kFrameRegionRadius, gripper.pad_size / model.normalization.scale);
+  // Half the pad's size as a region width, in normalised length (the category's diagonal is 1).
+  const double radius = std::max(kFrameRegionRadius, 0.5 * gripper.pad_size / model.normalization.scale);
   if (grasps.empty()) return {};
   Points contacts(2 * static_cast<Eigen::Index>(grasps.size()), 3);
   std::vector<Points> regions;
@@ -55,7 +55,7 @@ std::vector<Grasp> transfer_grasps(const CategoryModel& model, const Registratio
     contacts.row(row + 1) = grasps[g].contact(1).transpose();
     regions.push_back(contacts.middleRows(row, 2));
   }
-  const Points carried = deform_points(model, result, contacts);
+  const Points carried = deform_points(model, result, contacts, {}, Follow::material);
   const std::vector<Eigen::Matrix3d> turns = region_rotations(model, result, regions, radius);
   std::vector<Grasp> moved = grasps;
   for (std::size_t g = 0; g < grasps.size(); ++g) {

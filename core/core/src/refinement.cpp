@@ -131,8 +131,12 @@ std::vector<int> other_rows(Eigen::Index count, const std::vector<int>& rows) {
 
 Points RefinementField::displacement_at(const Points& positions) const {
   if (empty()) return Points::Zero(positions.rows(), 3);
-  const Points field = apply_kernel(positions, centres, weights, beta);
-  if (surface.rows() == 0) return field;
+  return apply_kernel(positions, centres, weights, beta);
+}
+
+Points RefinementField::material_displacement_at(const Points& positions) const {
+  const Points field = displacement_at(positions);
+  if (empty() || surface.rows() == 0) return field;
   // The normal near p is a blend of its nearest fitted points' projectors n n^T (sign-free, and smooth
   // where the nearest point changes), weighted by a Gaussian of the distance on the scale of their spacing.
   const KdTree tree(surface);
@@ -255,7 +259,7 @@ RefinementField refine_fit(const Points& fitted, const Points& observed,
   field.centres = centres;
   field.weights = weights;
   field.beta = beta;  // frame units, as centres and weights (transformed() rescales it, not width)
-  if (!settings.slide) field.surface = fitted, field.surface_normals = surface.normals;
+  field.surface = fitted, field.surface_normals = surface.normals;
   field.iterations = outcome.iterations;
   const Eigen::VectorXd movement = field.displacement_at(fitted).rowwise().norm();
   field.mean_movement = movement.mean();

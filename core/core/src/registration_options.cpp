@@ -173,11 +173,6 @@ std::vector<RegistrationOption> make_options() {
           "the refinement's kernel is at least this many times the observation's noise wide (0 = always "
           "refine-beta)",
           0.0, 100.0, [](auto& s) -> auto& { return s.refinement.noise_width; }),
-      Make::flag(
-          "refine-slide",
-          "let the refinement move points along the surface (off: only along its normals, so what is "
-          "attached follows the material)",
-          [](auto& s) -> auto& { return s.refinement.slide; }),
   };
 }
 

@@ -70,6 +70,13 @@ double chamfer_distance(const Points& a, const Points& b) {
 
 double truth_diagonal(const Points& truth) { return bounding_box_diagonal(truth); }
 
+double correspondence_error(const Points& material, const Points& truth_of_row, double diagonal) {
+  if (material.rows() != truth_of_row.rows() || material.rows() == 0)
+    throw InputError("ground-truth correspondences do not match the moved points");
+  if (!(diagonal > 0.0)) throw InputError("the truth's diagonal must be positive");
+  return (material - truth_of_row).rowwise().norm().mean() / diagonal;
+}
+
 TruthErrors measure_against_truth(const Points& deformed, const Eigen::VectorXi& part,
                                   const std::vector<std::string>& part_names, const Points& truth,
                                   double diagonal, const Points* truth_of_row,
@@ -101,7 +108,7 @@ TruthErrors measure_against_truth(const Points& deformed, const Eigen::VectorXi&
   if (truth_of_row) {
     if (truth_of_row->rows() != deformed.rows())
       throw InputError("ground-truth correspondences do not match the deformed points");
-    errors.correspondence_per_diagonal = (deformed - *truth_of_row).rowwise().norm().mean() / diagonal;
+    errors.correspondence_per_diagonal = correspondence_error(deformed, *truth_of_row, diagonal);
   }
   if (truth_part && !part_names.empty()) {
     errors.own_part_rms_per_diagonal =

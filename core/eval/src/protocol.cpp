@@ -252,6 +252,12 @@ void run_job(const EvalInput& input, const EvalSettings& settings, const FoldCon
                                              test.diagonal, truth_of_row ? &*truth_of_row : nullptr,
                                              truth_has_parts ? &test.truth.part : nullptr),
                  results[v].seconds);
+    // Correspondences are the material points' (the refinement may slide the surface, not what it carries).
+    if (truth_of_row)
+      rows[v].errors.correspondence_per_diagonal = core::correspondence_error(
+          core::deform_points(model, results[v], model.normalization.undo(model.canonical), {},
+                              core::Follow::material),
+          *truth_of_row, test.diagonal);
     if (variants[v] != core::Variant::holistic) rows[v].seam = core::seam_gap(model, results[v]);
     if (model.canonical_mesh.faces.rows() > 0) rows[v].mesh_stretch = core::mesh_stretch(model, results[v]);
     if (judge_grasps) rows[v].grasps = detail::registration_grasps(judge, model, results[v]);

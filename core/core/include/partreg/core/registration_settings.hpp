@@ -153,10 +153,6 @@ struct RefinementSettings {
   /// The kernel is at least this many times the observation's noise wide (RefinementField::noise; 0 = always
   /// beta): detail finer than the noise cannot be told from it. Measured: docs/registration.md.
   double noise_width = 4.0;
-  /// Off: the field moves points only along the space fit's normals, so material points (and the grasps,
-  /// frames and labels attached to them) do not slide along the surface; the surface is reached as closely.
-  /// On: the full field (synthetic mugs' correspondence error 5-7x the surface error; docs/grasps.md).
-  bool slide = false;
 };
 
 /// One registration request.

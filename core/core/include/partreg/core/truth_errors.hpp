@@ -59,6 +59,11 @@ double closest_point_error(const Points& deformed, const Points& truth);
 /// (units of the inputs). InputError for an empty set.
 double chamfer_distance(const Points& a, const Points& b);
 
+/// The correspondence error: the mean distance from each moved canonical point (`material`, the material
+/// points: deform_points with Follow::material) to where it truly is (`truth_of_row`, same rows), over D.
+/// InputError for rows that do not match or D <= 0.
+double correspondence_error(const Points& material, const Points& truth_of_row, double diagonal);
+
 /// Every figure of `deformed` (deformed canonical points, observed frame, data units; part index per row in
 /// `part`, names in `part_names`) against `truth` (a dense sample of the whole true instance, same frame).
 /// `diagonal` is D (truth_diagonal() of the instance in its own frame). `truth_of_row` (rows as `deformed`,
