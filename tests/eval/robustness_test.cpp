@@ -3,8 +3,8 @@
 // stands alone only while the fit passes near it (in the pose search's screening too), and the refinement spreads the outliers that remain over a
 // volume, as many as the stray screen found. Without that, farthest-point sampling favoured the outliers
 // and the fit was worse than a rigid template (docs/registration.md, "Strays"). And under the paper's second
-// noise level: the refinement widens its kernel with the noise, where it used to stand down and leave the
-// space fit (docs/registration.md, "noise").
+// noise level: the refinement widens its kernel with the noise rather than stand down and leave the
+// space fit (docs/refinement.md).
 #include <gtest/gtest.h>
 
 #include <iostream>
