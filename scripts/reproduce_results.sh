@@ -51,12 +51,12 @@ tables="/usr/bin/python3 $root/scripts/results_tables.py"
 partreg=$build/partreg bench=$build/tests/bench
 
 commands="" block_start=0
-# run COMMAND...: run it and note it for the block's stamp, with the build and work folders named as such.
+# run COMMAND...: run it and note it for the block's stamp, the build, work and data folders named as such.
 run() {
   local shown="" word
   for word in "$@"; do [[ $word == *" "* ]] && shown+="'$word' " || shown+="$word "; done
   shown=${shown% }
-  shown=${shown//$build/build} shown=${shown//$work/\$WORK} shown=${shown//$root\//}
+  shown=${shown//$build/build} shown=${shown//$work/\$WORK} shown=${shown//$data/\$DATA} shown=${shown//$root\//}
   commands+="$shown"$'\n'
   echo "reproduce_results: $shown" >&2
   nice -n 5 "$@" >"$work/last.log" 2>&1 || { cat "$work/last.log" >&2; echo "reproduce_results: failed: $shown" >&2; exit 1; }
