@@ -80,7 +80,11 @@ def format_time(value, unit):
 def bench(paths):
     rows, counters = [], []
     for path in paths:
-        for run in json.load(open(path))["benchmarks"]:
+        try:
+            runs = json.load(open(path))["benchmarks"]
+        except (OSError, ValueError, KeyError):
+            fail(f"{path}: no Google Benchmark output (did the filter match no benchmark?)")
+        for run in runs:
             if run.get("run_type") == "aggregate" and run.get("aggregate_name") != "median":
                 continue
             if run.get("error_occurred"):
