@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# partreg against Interaction Warping (issue 14): the same held-out ShapeNet mugs and bowls, the same
+# partreg against Interaction Warping: the same held-out ShapeNet mugs and bowls, the same
 # observation files, both scored by partreg's own error code at equal point density.
 #
 # It fetches nothing. Give it these source folders (all MIT), checked out outside the repository:

@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # The paper's evaluation on every category in ../shared/data and on two synthetic categories, then one merged
 # report (real categories first: they are the timed part). Usage: scripts/run_evaluation.sh [paper|quick] [OUT] [THREADS]. Needs a build (scripts/build.sh).
-# docs/results.md quotes what this printed and wrote.
+# The tables of docs/results.md come from scripts/reproduce_results.sh, which runs its own declared set.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 protocol=${1:-paper}

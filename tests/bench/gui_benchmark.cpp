@@ -1,6 +1,6 @@
 // The desktop app's interactive costs, headless (OSMesa llvmpipe) at 1280x800 on canonical meshes of about
 // 37,000 and 148,000 vertices: a shape-slider move (re-deform by Eq. 4 and redraw, panels included) and a
-// paint stroke event. Targets (issue 8): at least 30 frames per second while dragging a slider; under 30 ms
+// paint stroke event. Targets: at least 30 frames per second while dragging a slider; under 30 ms
 // per stroke event.
 #include <benchmark/benchmark.h>
 

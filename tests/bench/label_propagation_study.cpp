@@ -1,4 +1,4 @@
-// A study, not a benchmark (issue 15 item 5): labels propagated to a held-out kettle through a registration,
+// A study, not a benchmark: labels propagated to a held-out kettle through a registration,
 // with and without the refinement. Leave-one-out over the kettles (their own part files are the truth): a
 // model is trained on the others, the held-out kettle's full surface sample is registered (holistic), and
 // each of its points takes the part of the nearest registered canonical point. Prints the agreement per

@@ -2,7 +2,7 @@
 // instance seen fully and from one partial view, turned about its up axis. For every observation the
 // truth-best hypothesis is found by brute force (a single start at each of the search's yaws, scored against
 // the truth); each selection score then runs the search and we count how often its result is within 10% of
-// that best. Not a test: it prints the table in docs/registration.md. Run (a few minutes):
+// that best. Not a test: it prints the figures behind docs/pose_search.md. Run (a few minutes):
 //   ./build/tests/bench/pose_selection_study [folder ...] [NAME=VALUE ...]   (default: mugs bowls kettles)
 // NAME=VALUE sets a registration option of the search (e.g. finalists=4) and of the single starts the
 // truth-best is taken from (whose restarts and tilts are always 1 and none); score=S studies that score only.

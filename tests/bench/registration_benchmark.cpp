@@ -87,7 +87,7 @@ using partreg::core::Variant;
 // The default search: 12 yaws x 9 tilts, screened on 300 points, successive halving to 2 finalists.
 void BM_KettleHolistic(benchmark::State& state) { run(state, "kettles", Variant::holistic); }
 void BM_KettleHolPart(benchmark::State& state) { run(state, "kettles", Variant::hol_part); }
-// Issue 18's single-start targets: holistic at most 20 ms, hol+part (four parts) at most 60 ms.
+// Single-start targets: holistic at most 20 ms, hol+part (four parts) at most 60 ms.
 void BM_KettleHolisticOneStart(benchmark::State& state) {
   run(state, "kettles", Variant::holistic, one_start);
 }
@@ -101,18 +101,18 @@ void BM_KettleHolisticSearch12(benchmark::State& state) {
     settings.initialisation.screening_points = 0;
   });
 }
-// Issue 15's target: the coupled variant, four parts (the holistic search it starts from included).
+// The coupled variant, four parts (the holistic search it starts from included).
 void BM_KettleCoupled(benchmark::State& state) { run(state, "kettles", Variant::coupled); }
 // With one start: minus BM_KettleHolisticOneStart, the time of the coupled problem alone.
 void BM_KettleCoupledOneStart(benchmark::State& state) { run(state, "kettles", Variant::coupled, one_start); }
-// Issue 15's exact setting: M = 1000 (no floor per part), N = 2000, four parts, one start.
+// The coupled problem's reference size: M = 1000 (no floor per part), N = 2000, four parts, one start.
 void BM_KettleCoupledOneStartM1000(benchmark::State& state) {
   run(state, "kettles", Variant::coupled, one_start, 0, /*part_points=*/0);
 }
 void BM_DrillHolistic(benchmark::State& state) { run(state, "drills", Variant::holistic); }
 // The fit beyond the space (refinement.hpp) after the default holistic registration, on one thread so that
 // the CPU time is all the work (the machine may be shared): the difference between the two is the
-// refinement's cost (target: at most 100 ms more, issue 15).
+// refinement's cost (target: at most 100 ms more).
 void BM_KettleHolisticSerial(benchmark::State& state) { run(state, "kettles", Variant::holistic, {}, 1); }
 void BM_KettleHolisticRefinedSerial(benchmark::State& state) {
   run(

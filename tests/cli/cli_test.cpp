@@ -215,7 +215,7 @@ TEST_F(Cli, RegisterWritesItsOutputsAndRefusesBadInput) {
   const std::string text{std::istreambuf_iterator<char>(json), {}};
   for (const char* key : {"T_observed_canonical", "latent", "eq5_per_diagonal2", "p90", "\"handle\""})
     EXPECT_NE(text.find(key), std::string::npos) << key;
-  // Issue 14: --truth scores the three baselines on the same observation, and the ratio to the oracle
+  // --truth scores the three baselines on the same observation, and the ratio to the oracle
   // template is partreg's figure over the oracle's.
   const nlohmann::json report = nlohmann::json::parse(text);
   const nlohmann::json& baselines = report.at("truth").at("baselines");
@@ -229,7 +229,7 @@ TEST_F(Cli, RegisterWritesItsOutputsAndRefusesBadInput) {
             baselines.at("rigid-canonical").at("symmetric_rms_per_diagonal").get<double>() + 1e-12)
       << "the oracle's templates include the canonical";
 
-  // Issue 14: the search says how many hypotheses it tried (12 yaws x 9 tilts by default) and how clear the
+  // The search says how many hypotheses it tried (12 yaws x 9 tilts by default) and how clear the
   // winner was, in the JSON and on the command line.
   const nlohmann::json& holistic = report.at("spaces").at(0);
   EXPECT_EQ(holistic.at("pose_hypotheses").get<int>(), 108);

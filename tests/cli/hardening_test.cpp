@@ -1,4 +1,4 @@
-// Issue 16 as a user meets it: each reproducer through the real executables. Every case checks the exit
+// Bad input as a user meets it: each reproducer through the real executables. Every case checks the exit
 // code, one line naming the file or the option, no crash, and no output left behind.
 #include <gtest/gtest.h>
 #include <sys/stat.h>

@@ -1,4 +1,4 @@
-// The coupled part variant (issue 15): one problem over the object's pose, the parts' latents and small
+// The coupled part variant: one problem over the object's pose, the parts' latents and small
 // rigid offsets, with a seam term. Synthetic mugs with ground truth, fixed seeds.
 
 #include <gtest/gtest.h>

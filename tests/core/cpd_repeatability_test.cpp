@@ -1,5 +1,5 @@
-// CPD gives the same bits whatever the thread count and whatever the process allocated before (issue 18:
-// the evaluation's shards must equal the unsharded run, and the Python module the command line).
+// CPD gives the same bits whatever the thread count and whatever the process allocated before (so
+// the evaluation's shards equal the unsharded run, and the Python module the command line).
 #include <gtest/gtest.h>
 
 #include <memory>

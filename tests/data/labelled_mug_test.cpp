@@ -8,7 +8,7 @@
 namespace partreg {
 namespace {
 
-constexpr double kStretchLimit = 3.0;  // issue 15: no mesh edge beyond 3x its canonical length
+constexpr double kStretchLimit = 3.0;  // no mesh edge beyond 3x its canonical length
 
 double largest(const std::vector<core::SpaceStretch>& figures, const std::string& space) {
   double stretch = 0.0;

@@ -217,7 +217,7 @@ TEST(EvalCommand, YawAndWideRotationSweepsRunEveryLevelAndReachTheTables) {
       yaw_errors[row.level_index].push_back(row.errors.symmetric_rms_per_diagonal);
   ASSERT_EQ(yaw_errors.size(), 12u);
   const auto mean = [](const std::vector<double>& v) { return (v[0] + v[1]) / 2; };
-  for (const auto& [level, errors] : yaw_errors)  // issue 14: within 15% of the error at yaw 0
+  for (const auto& [level, errors] : yaw_errors)  // within 15% of the error at yaw 0
     EXPECT_LT(mean(errors), 1.15 * mean(yaw_errors[0]) + 1e-3) << "yaw level " << level;
   const std::string tables = read_text(dir / "eval" / "tables.md");
   EXPECT_NE(tables.find("| yaw 330 deg |"), std::string::npos) << tables;

@@ -3,8 +3,8 @@
 // stands alone only while the fit passes near it (in the pose search's screening too), and the refinement spreads the outliers that remain over a
 // volume, as many as the stray screen found. Without that, farthest-point sampling favoured the outliers
 // and the fit was worse than a rigid template (docs/registration.md, "Strays"). And under the paper's second
-// noise level: the refinement widens its kernel with the noise, where it used to stand down and leave the
-// space fit (docs/registration.md, "noise").
+// noise level: the refinement widens its kernel with the noise rather than stand down and leave the
+// space fit (docs/refinement.md).
 #include <gtest/gtest.h>
 
 #include <iostream>
@@ -63,8 +63,8 @@ TEST(RealDataRobustness, TwentyPercentOutliersLeaveAHeldOutKettleNearItsCleanFit
             << ", every point kept " << with_every_point << "; refinement's outlier weight: clean "
             << clean.refinement.outlier_weight << ", 20% outliers " << strays_out.refinement.outlier_weight << "\n";
   // Measured 0.0154 against 0.0256 (0.0107 clean); 0.0169 while the pose search's screening dropped the
-  // flags, 0.0197 while the refinement's outlier term was also CPD's 1 / N at a fixed w. Issue 15's target
-  // (1.2x clean) is not met: the outliers the fit passes near are matched.
+  // flags, 0.0197 while the refinement's outlier term was also CPD's 1 / N at a fixed w. The aim
+  // of 1.2x clean is not met: the outliers the fit passes near are matched.
   EXPECT_LT(with_strays_out, 0.75 * with_every_point);
   EXPECT_LT(with_strays_out, 1.6 * clean_error);
   // The refinement's w is the share the stray screen left out, a lower bound of the outliers' (measured 0.0113:

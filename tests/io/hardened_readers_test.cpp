@@ -1,5 +1,5 @@
-// Issue 16: every reader checks before it trusts. Each case is a file that crashed, hung or exhausted
-// memory before: it must now be refused with an InputError naming the file, quickly.
+// Every reader checks before it trusts. Each case is a file that would crash, hang or exhaust
+// memory in a careless reader: it must be refused with an InputError naming the file, quickly.
 #include <gtest/gtest.h>
 #include <sys/stat.h>
 

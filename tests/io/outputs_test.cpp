@@ -1,4 +1,4 @@
-// Issue 16: every output is what its name says, written where it is asked without destroying what is not
+// Every output is what its name says, written where it is asked without destroying what is not
 // partreg's (devices, FIFOs, links), and nothing half-written or stale is left behind.
 #include <gtest/gtest.h>
 #include <sys/mount.h>

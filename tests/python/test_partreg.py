@@ -13,7 +13,7 @@ import pytest
 from conftest import read_ascii_ply_mesh
 
 EXACT = 1e-9  # the CLI's JSON holds every double to round-trip precision
-CPD_CLOSE = EXACT  # CPD is bit-repeatable across processes (its E-step sums in a fixed order, issue 18)
+CPD_CLOSE = EXACT  # CPD is bit-repeatable across processes (its E-step sums in a fixed order)
 
 
 def test_version_matches_the_command_line(partreg):

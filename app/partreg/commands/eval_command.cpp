@@ -283,7 +283,7 @@ void add_eval_command(CLI::App& app) {
       ->add_option(
           "--truth-samples", o->settings.truth_points,
           "surface samples of a mesh instance's truth, drawn apart from the training sample (0: score "
-          "against the training sample, as before 2026-12-07)")
+          "against the training sample)")
       ->check(CLI::NonNegativeNumber)
       ->capture_default_str();
   command->add_option("--seed", o->settings.seed, "seed of views, samples and perturbations")

@@ -40,7 +40,7 @@ std::unique_ptr<ceres::CostFunction> make_part_data_cost(const ShapeSpace& space
 /// part's share of the pairs' total weight, so that a part's prior weighs against its own data as a single
 /// space's prior weighs against the whole observation (holistic, and each part of hol+part). Undivided, the
 /// prior of a handle holding a tenth of the pairs weighed ten times as much against its data as the holistic
-/// fit's does (measured: docs/results.md, "Each part's prior weighs against its own data"). A part without
+/// fit's does (measured: docs/variants.md, "The coupled variant"). A part without
 /// pairs gets none: the seams and its start hold it. No pairs at all: the weight as given, for every part.
 std::vector<double> part_prior_weights(const std::vector<std::vector<WeightedPair>>& pairs,
                                        double prior_weight);

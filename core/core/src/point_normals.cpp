@@ -54,7 +54,7 @@ constexpr std::size_t kPatchObserved = 6;  // fewer observed points in a patch g
 // the patch's normal). The median over patches is the figure. A smooth misfit moves a whole patch alike and
 // adds little; noise differs from point to point. Measured on the paper's noise sweep (kettles, full views):
 // 0.003-0.009 clean, 0.035 at sigma 0.033, 0.065 at sigma 0.083 (points pushed far go to the next patch).
-// A plane fitted to each point's 16 nearest observed neighbours, as before 2026-12-03, saturated near 0.028
+// A plane fitted to each point's 16 nearest observed neighbours instead saturated near 0.028
 // and read a clean mug's two walls (0.018) as noisier than a noisy kettle.
 double observed_noise(const Points& observed, const Points& fitted, const Points& normals) {
   std::vector<int> nearest;

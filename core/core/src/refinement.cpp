@@ -202,8 +202,8 @@ RefinementField refine_fit(const Points& fitted, const Points& observed,
   const Points matched = select_rows(observed, near);
   field.matched = static_cast<int>(near.size());
   // Detail finer than the noise cannot be told from it: the kernel widens with the observation's noise, so a
-  // noisy cloud is still refined, only more coarsely (the space fit stood alone above a thickness limit
-  // until 2026-12-03: worse at every level of the paper's noise sweep, docs/registration.md). Every observed
+  // noisy cloud is still refined, only more coarsely (letting the space fit stand alone above a thickness
+  // limit was worse at every level of the paper's noise sweep, docs/registration.md). Every observed
   // point counts, the far ones too: at the paper's largest noise the points pushed beyond the
   // stray distance are the noise's tail (measured with only the matched ones: drills' full views 4.13 against
   // 3.70 at the largest level).

@@ -4,7 +4,7 @@
 // How stiffly the seam term holds neighbouring parts together is a property of the category: the mugs'
 // handles and the spray bottles' heads vary apart from their bodies and fit best with a soft seam (weight 1),
 // the drills' handle and head move together and fit best with a stiff one (30); the training fields' own seam
-// gaps do not order them (docs/results.md, "Seams, tried and not taken"). So training measures it: each
+// gaps do not order them (docs/training.md, "The seam weight"). So training measures it: each
 // instance other than the canonical is held out in turn, the spaces are learned again without it, and its own
 // whole sample and four partial views are registered with every candidate weight; the weight with the lowest
 // mean error against the held-out instance wins.

@@ -421,7 +421,7 @@ void seam_tables(std::ostringstream& out, const std::vector<EvalRow>& rows) {
       });
 }
 
-// How far the registrations stretched the canonical mesh (issue 15's limit on the shape-space grid is 3x):
+// How far the registrations stretched the canonical mesh (the limit on the shape-space grid is 3x):
 // the mean over the rows of each row's largest edge stretch, then the largest over the rows.
 void stretch_tables(std::ostringstream& out, const std::vector<EvalRow>& rows) {
   clean_figure_tables(

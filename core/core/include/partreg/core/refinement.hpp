@@ -1,6 +1,6 @@
 #pragma once
 /// \file
-/// A fit beyond the shape space (issue 15): the space fit is as good as the training set's shapes allow;
+/// A fit beyond the shape space: the space fit is as good as the training set's shapes allow;
 /// the refinement lets the observed regions reach what the sensor saw. It is non-rigid CPD (Myronenko &
 /// Song 2010) with three changes: it starts at the space fit with the fit's own residual variance, only the
 /// canonical points that were observed take part in the E-step, and the others are pulled back to the

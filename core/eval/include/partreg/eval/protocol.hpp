@@ -74,7 +74,7 @@ struct EvalSettings {
   bool use_viewpoint = true;    ///< partial views tell the registration where the camera was
   int full_view_points = 4000;  ///< surface samples of a mesh's full view (a different sample than the truth)
   /// Surface samples of a mesh instance's truth, drawn apart from the training sample and the full view; 0
-  /// scores against the training sample (before 2026-12-07). Cloud data is its own truth.
+  /// scores against the training sample. Cloud data is its own truth.
   int truth_points = core::kTruthSamples;
   int threads = 0;              ///< 0 = all cores
   int shard = 0;                ///< this run's shard, in [0, shard_count)
