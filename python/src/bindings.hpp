@@ -12,4 +12,7 @@ void bind_types(pybind11::module_& module);
 /// read/write, train, register, deform, transfer, cpd, views, errors.
 void bind_functions(pybind11::module_& module);
 
+/// A readable __repr__ for the result and frame types bound by bind_types (after it).
+void bind_reprs(pybind11::module_& module);
+
 }  // namespace partreg::python
