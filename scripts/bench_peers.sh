@@ -155,8 +155,14 @@ done
 # --- the table ---
 "$python" - "$results" "$work/inputs" "$mode" <<'PY'
 import sys, numpy as np
-from scipy.spatial import cKDTree
 results, inputs, mode = sys.argv[1], sys.argv[2], sys.argv[3]
+def nearest_distances(target, moved):
+    try:
+        from scipy.spatial import cKDTree
+        return cKDTree(target).query(moved)[0]
+    except ImportError:  # without python3-scipy: blocks of all pairs
+        return np.concatenate([np.sqrt(((block[:, None, :] - target[None]) ** 2).sum(-1).min(1))
+                               for block in np.array_split(moved, max(1, len(moved) // 256))])
 def read_moved(path):
     if path.endswith('.ply'):
         lines = open(path, 'rb').read().decode('latin-1').splitlines()
@@ -181,7 +187,7 @@ for name, n, cpu, wall, peak, status, out in rows:
         try:
             moved = read_moved(out)
             target = np.loadtxt(f'{inputs}/target_{n}.txt')
-            fit = f'{cKDTree(target).query(moved)[0].mean():.4f}'
+            fit = f'{nearest_distances(target, moved).mean():.4f}'
         except Exception as error:
             fit = f'unread ({type(error).__name__})'
     mine = next((float(r[2]) for r in rows if r[0] == 'partreg' and r[1] == n and r[5] == 'ok'), None)
