@@ -1,5 +1,6 @@
 // How the module's result and model types print: what a user checks first (sizes, the fit, why it stopped),
 // in the units the attributes carry, never an address.
+#include <cmath>
 #include <iomanip>
 #include <sstream>
 

@@ -191,7 +191,8 @@ TEST(RigidCpd, FastPathAgreesWithExactEStep) {
 // not the settings' cap, which it never reached.
 TEST(RigidCpd, AStopInThePolishingStageNamesItsLimit) {
   const Points source = asymmetric_shape(2000, 14);
-  const Points target = with_noise_and_outliers(transformed(source, rotation(0.4, {0.0, 0.0, 1.0}), {}), 0.01, 0.1, 15);
+  const Points turned = transformed(source, rotation(0.4, {0.0, 0.0, 1.0}), Eigen::Vector3d::Zero());
+  const Points target = with_noise_and_outliers(turned, 0.01, 0.1, 15);
   RigidCpdSettings settings;
   settings.tolerance = 1e-300;  // never converges: every stage runs out its iterations
   const RigidCpdResult polished = register_rigid(source, target, settings);  // a coarse stage of 1000

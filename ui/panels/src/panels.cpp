@@ -42,7 +42,7 @@ std::string number_text(double value) {
 // as the script's select_box, select_plane and select_sphere verbs do.
 void region_selection(PanelState& panel, std::vector<Command>& out) {
   ImGui::Separator();
-  const char* labels[] = {"Box", "Plane (the normal's side)", "Sphere"};
+  static constexpr const char* labels[] = {"Box", "Plane (the normal's side)", "Sphere"};
   static_assert(std::size(labels) == std::size(kRegionVerbs));
   ImGui::Combo("Region", &panel.region_tool, labels, static_cast<int>(std::size(labels)));
   const char* verb = kRegionVerbs[panel.region_tool];
