@@ -70,8 +70,10 @@ py::array as_array(const py::handle& object, const std::string& what) {
   try {
     return py::module_::import("numpy").attr("asarray")(object, "float64");
   } catch (const py::error_already_set&) {
-    throw UsageError(what + " must be points (N, 3): a numpy array, an Open3D PointCloud or Vector3dVector, or "
-                     "a list of [x, y, z]; not " + std::string(py::str(object.get_type().attr("__name__"))));
+    throw UsageError(what +
+                     " must be points (N, 3): a numpy array, an Open3D PointCloud or Vector3dVector, or "
+                     "a list of [x, y, z]; not " +
+                     std::string(py::str(object.get_type().attr("__name__"))));
   }
 }
 
@@ -82,7 +84,8 @@ void copy_strided(const py::array& array, core::Points& points) {
   const py::ssize_t row_stride = array.strides(0), column_stride = array.strides(1);
   for (Eigen::Index r = 0; r < points.rows(); ++r)
     for (Eigen::Index c = 0; c < 3; ++c)
-      points(r, c) = static_cast<double>(*reinterpret_cast<const T*>(base + r * row_stride + c * column_stride));
+      points(r, c) =
+          static_cast<double>(*reinterpret_cast<const T*>(base + r * row_stride + c * column_stride));
 }
 
 }  // namespace

@@ -40,8 +40,8 @@ void set_repr(py::module_& m, const char* name, Describe describe) {
 }
 
 std::string fit_text(const core::FitStatistics& fit) {
-  return "mean " + number(fit.mean) + " (" + number(100 * fit.mean_normalised, 3) + "% of the diagonal), p90 " +
-         number(fit.p90) + ", " + std::to_string(fit.strays) + " strays";
+  return "mean " + number(fit.mean) + " (" + number(100 * fit.mean_normalised, 3) +
+         "% of the diagonal), p90 " + number(fit.p90) + ", " + std::to_string(fit.strays) + " strays";
 }
 
 void registration_reprs(py::module_& m) {
@@ -75,7 +75,8 @@ void registration_reprs(py::module_& m) {
 template <typename Result>
 std::string cpd_text(const Result& s) {
   return std::to_string(s.moved.rows()) + " points, " + std::to_string(s.iterations) + " iterations (" +
-         core::to_string(s.stop_reason) + "), sigma2 " + number(s.sigma2) + ", " + number(s.seconds, 3) + " s";
+         core::to_string(s.stop_reason) + "), sigma2 " + number(s.sigma2) + ", " + number(s.seconds, 3) +
+         " s";
 }
 
 void cpd_reprs(py::module_& m) {

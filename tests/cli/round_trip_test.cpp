@@ -25,15 +25,16 @@ class RoundTrip : public ::testing::Test {
  protected:
   static void SetUpTestSuite() {
     dir_ = new testing::TempDir();
-    ASSERT_EQ(testing::run_partreg("synth mug --out " + path("mugs") + " --instances 4 --seed 3").exit_code, 0);
-    ASSERT_EQ(testing::run_partreg("train " + path("mugs") + " --out " + path("mug.prm") + " --points 300").exit_code,
+    ASSERT_EQ(testing::run_partreg("synth mug --out " + path("mugs") + " --instances 4 --seed 3").exit_code,
+              0);
+    ASSERT_EQ(testing::run_partreg("train " + path("mugs") + " --out " + path("mug.prm") + " --points 300")
+                  .exit_code,
               0);
     // Both formats of both outputs, from one registration each (the same request: the same result).
     for (const char* format : {"ply", "vtp"}) {
-      const Outcome registered =
-          testing::run_partreg("register " + path("mug.prm") + " " + observed_path() + " --variant hol+part" +
-                               " --points-out " + path(std::string("points.") + format) + " --mesh-out " +
-                               path(std::string("mesh.") + format));
+      const Outcome registered = testing::run_partreg(
+          "register " + path("mug.prm") + " " + observed_path() + " --variant hol+part" + " --points-out " +
+          path(std::string("points.") + format) + " --mesh-out " + path(std::string("mesh.") + format));
       ASSERT_EQ(registered.exit_code, 0) << registered.output;
     }
   }
@@ -59,7 +60,8 @@ class RoundTrip : public ::testing::Test {
       ASSERT_TRUE(correspondence[i] >= 0 && correspondence[i] < observed.rows()) << i;
       EXPECT_NEAR((points.row(i) - observed.row(correspondence[i])).norm(), residual[i], precision) << i;
     }
-    EXPECT_GT(residual.maxCoeff(), 0.0);  // a residual of zeros would pass the loop above for matched points only
+    EXPECT_GT(residual.maxCoeff(),
+              0.0);  // a residual of zeros would pass the loop above for matched points only
   }
 
   static void expect_unit_normals(const core::Points& normals, Eigen::Index rows) {
@@ -111,13 +113,15 @@ TEST_F(RoundTrip, RenderColoursTheParts) {
                                  path("grey.png"))
                 .exit_code,
             0);
-  const render::Image vtp = render::read_png(path("parts_vtp.png")), ply = render::read_png(path("parts_ply.png")),
+  const render::Image vtp = render::read_png(path("parts_vtp.png")),
+                      ply = render::read_png(path("parts_ply.png")),
                       grey = render::read_png(path("grey.png"));
   const auto differing = [](const render::Image& a, const render::Image& b) {
     std::size_t count = 0;
     for (std::size_t i = 0; i < a.rgba.size(); i += 4)
       count += std::abs(a.rgba[i] - b.rgba[i]) + std::abs(a.rgba[i + 1] - b.rgba[i + 1]) +
-                   std::abs(a.rgba[i + 2] - b.rgba[i + 2]) > 24;
+                   std::abs(a.rgba[i + 2] - b.rgba[i + 2]) >
+               24;
     return count;
   };
   const std::size_t pixels = vtp.rgba.size() / 4;

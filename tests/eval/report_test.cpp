@@ -176,7 +176,8 @@ TEST(EvalReport, SeamGapsRoundTripAndShowForThePartVariantsOnly) {
 
   // Format 2 (before the seam columns), 3 (before the own-part columns) and 4 (before the mesh stretch) files
   // still read. The holistic row ends in 5 empty fields: seam gaps, own-part figures, stretch.
-  // Plain CSV (pandas.read_csv without options): the header first, as many fields as every row, no comment line.
+  // Plain CSV (pandas.read_csv without options): the header first, as many fields as every row, no comment
+  // line.
   std::ifstream in(dir / "r.csv");
   std::string header, line;
   std::getline(in, header), std::getline(in, line);

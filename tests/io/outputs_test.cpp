@@ -97,7 +97,8 @@ TEST(Outputs, PlyAndVtpRoundTripPartsByNameNormalsAndAttributes) {
     EXPECT_LT((read.cloud.points - cloud.points).cwiseAbs().maxCoeff(), precision) << file;
     EXPECT_LT((read.cloud.normals - cloud.normals).cwiseAbs().maxCoeff(), precision) << file;
     EXPECT_EQ(read.attributes.integers, written.integers) << file;
-    EXPECT_LT((read.attributes.reals.at("u") - written.reals.at("u")).cwiseAbs().maxCoeff(), precision) << file;
+    EXPECT_LT((read.attributes.reals.at("u") - written.reals.at("u")).cwiseAbs().maxCoeff(), precision)
+        << file;
     EXPECT_EQ(read.attributes.part_names, written.part_names) << file;
   }
 

@@ -31,7 +31,8 @@ TEST(PanelDefaults, EveryRegistrationChoiceStartsAtTheLibrarysDefault) {
 }
 
 TEST(PanelDefaults, AChoiceMadeInThePanelIsWhatRegisterSends) {
-  // A panel set to another direction sends it (so the comparison above can fail): observed is not the default.
+  // A panel set to another direction sends it (so the comparison above can fail): observed is not the
+  // default.
   ASSERT_NE(library_defaults().at("direction"), "observed");
   PanelState panel;
   panel.direction = enum_index(core::Direction::observed);

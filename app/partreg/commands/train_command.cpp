@@ -83,9 +83,11 @@ void print_summary(const core::CategoryModel& model, const core::TrainingReport&
 void hold_out(io::Dataset& dataset, const std::vector<std::string>& names) {
   for (const std::string& name : names) {
     auto& instances = dataset.instances;
-    const auto found = std::find_if(instances.begin(), instances.end(),
-                                    [&](const core::TrainingInstance& instance) { return instance.name == name; });
-    if (found == instances.end()) throw UsageError("--hold-out: no instance '" + name + "' in " + dataset.name);
+    const auto found =
+        std::find_if(instances.begin(), instances.end(),
+                     [&](const core::TrainingInstance& instance) { return instance.name == name; });
+    if (found == instances.end())
+      throw UsageError("--hold-out: no instance '" + name + "' in " + dataset.name);
     instances.erase(found);
   }
   if (dataset.instances.size() < 2)

@@ -17,10 +17,10 @@ namespace partreg::eval {
 namespace {
 
 // A results file is plain CSV: one header line naming the columns, then the rows (what pandas.read_csv and a
-// spreadsheet read without options); the run's other facts are in run.json beside it, with the layout's number
-// (kRowsFormat: raised when a column changes meaning). Earlier layouts started with a "# partreg evaluation
-// rows, format N" line and added columns at the end: 3 the two seam-gap columns, 4 the own-part figures, 5 the
-// mesh stretch. They are still read (their missing figures stay empty).
+// spreadsheet read without options); the run's other facts are in run.json beside it, with the layout's
+// number (kRowsFormat: raised when a column changes meaning). Earlier layouts started with a "# partreg
+// evaluation rows, format N" line and added columns at the end: 3 the two seam-gap columns, 4 the own-part
+// figures, 5 the mesh stretch. They are still read (their missing figures stay empty).
 #define PARTREG_FORMAT_2_COLUMNS                                                                      \
   "category,instance,canonical,fold,variant,view,direction_x,direction_y,direction_z,perturbation,"   \
   "level_index,paper_level,level,diagonal,observed_points,eq5,eq5_per_diagonal2,reverse_eq5,"         \
@@ -227,8 +227,9 @@ std::vector<EvalRow> read_rows_csv(const std::filesystem::path& path) {
     return labelled ? line == known.line : line == known.header;
   });
   if (labelled && format == std::end(kFormats))
-    throw InputError(path.string() + " has another format (" + line.substr(2) +
-                     "; this partreg reads the current one and formats 5, 4, 3 and 2): run the evaluation again");
+    throw InputError(
+        path.string() + " has another format (" + line.substr(2) +
+        "; this partreg reads the current one and formats 5, 4, 3 and 2): run the evaluation again");
   if (format == std::end(kFormats))
     throw InputError(path.string() + " is not a partreg evaluation CSV of this version (its header differs)");
   if (labelled && (!std::getline(in, line) || line != format->header))

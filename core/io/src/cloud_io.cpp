@@ -179,7 +179,8 @@ void put_ply(std::ostream& out, const core::Cloud& cloud, const PointAttributes&
   {
     out << "ply\nformat " << (binary ? "binary_little_endian" : "ascii")
         << " 1.0\ncomment written by partreg\n"
-        << detail::part_name_comments(attributes.part_names) << "element vertex " << n << "\nproperty float x\nproperty float y\nproperty float z\n";
+        << detail::part_name_comments(attributes.part_names) << "element vertex " << n
+        << "\nproperty float x\nproperty float y\nproperty float z\n";
     if (normals) out << "property float nx\nproperty float ny\nproperty float nz\n";
     for (const auto& entry : attributes.integers) out << "property int " << entry.first << '\n';
     for (const auto& entry : attributes.reals) out << "property float " << entry.first << '\n';

@@ -3,8 +3,8 @@
 #include <assimp/postprocess.h>
 #include <assimp/scene.h>
 
-#include <assimp/Importer.hpp>
 #include <array>
+#include <assimp/Importer.hpp>
 #include <fstream>
 #include <map>
 #include <sstream>
@@ -149,8 +149,9 @@ void put_obj(std::ostream& out, const core::Mesh& mesh) {
 // properties, the part names as header comments.
 void put_ply(std::ostream& out, const core::Mesh& mesh, const PointAttributes& attributes) {
   const bool normals = mesh.normals.rows() == mesh.vertices.rows() && mesh.vertices.rows() > 0;
-  out << "ply\nformat ascii 1.0\ncomment written by partreg\n" << detail::part_name_comments(attributes.part_names)
-      << "element vertex " << mesh.vertices.rows() << "\nproperty double x\nproperty double y\nproperty double z\n";
+  out << "ply\nformat ascii 1.0\ncomment written by partreg\n"
+      << detail::part_name_comments(attributes.part_names) << "element vertex " << mesh.vertices.rows()
+      << "\nproperty double x\nproperty double y\nproperty double z\n";
   if (normals) out << "property double nx\nproperty double ny\nproperty double nz\n";
   for (const auto& entry : attributes.integers) out << "property int " << entry.first << '\n';
   for (const auto& entry : attributes.reals) out << "property double " << entry.first << '\n';
@@ -186,7 +187,8 @@ void write_mesh(const std::filesystem::path& path, const core::Mesh& mesh,
     out.precision(9);
     if (format == FileFormat::obj) put_obj(out, mesh);
     if (format == FileFormat::ply) put_ply(out, mesh, attributes);
-    if (format == FileFormat::vtp) detail::write_vtp(out, {mesh.vertices, mesh.normals, mesh.faces, attributes});
+    if (format == FileFormat::vtp)
+      detail::write_vtp(out, {mesh.vertices, mesh.normals, mesh.faces, attributes});
     if (!out.flush()) throw InputError("cannot write " + path.string());
   });
 }
@@ -199,7 +201,8 @@ namespace {
 std::vector<int> matching_rows(const core::Points& file_vertices, const core::Mesh& mesh) {
   using Key = std::array<float, 3>;
   const auto key = [](const core::Points& points, Eigen::Index i) {
-    return Key{static_cast<float>(points(i, 0)), static_cast<float>(points(i, 1)), static_cast<float>(points(i, 2))};
+    return Key{static_cast<float>(points(i, 0)), static_cast<float>(points(i, 1)),
+               static_cast<float>(points(i, 2))};
   };
   std::map<Key, int> row_at;
   for (Eigen::Index i = 0; i < file_vertices.rows(); ++i) row_at[key(file_vertices, i)] = static_cast<int>(i);
@@ -219,7 +222,8 @@ void read_ply_vertex_data(const std::filesystem::path& path, MeshFile& file) {
   if (rows.empty()) return;
   for (const auto& [name, values] : vertices.attributes.integers)
     file.vertex_attributes.integers[name] = values(rows).eval();
-  for (const auto& [name, values] : vertices.attributes.reals) file.vertex_attributes.reals[name] = values(rows).eval();
+  for (const auto& [name, values] : vertices.attributes.reals)
+    file.vertex_attributes.reals[name] = values(rows).eval();
   file.vertex_attributes.part_names = vertices.attributes.part_names;
   if (vertices.cloud.normals.rows() == vertices.cloud.points.rows())
     file.mesh.normals = vertices.cloud.normals(rows, Eigen::all).eval();
@@ -241,7 +245,8 @@ MeshFile read_mesh_file(const std::filesystem::path& path) {
   file.vertex_attributes = std::move(data.attributes);
   if (file.mesh.faces.rows() == 0)
     throw InputError(path.string() + " has no faces: it is a point cloud, read it as a cloud");
-  if (!file.mesh.vertices.allFinite()) throw InputError(path.string() + " has NaN or infinite vertex coordinates");
+  if (!file.mesh.vertices.allFinite())
+    throw InputError(path.string() + " has NaN or infinite vertex coordinates");
   return file;
 }
 

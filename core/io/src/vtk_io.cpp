@@ -4,7 +4,6 @@
 #include <vtkDataArray.h>
 #include <vtkDoubleArray.h>
 #include <vtkFieldData.h>
-#include <vtkStringArray.h>
 #include <vtkIdList.h>
 #include <vtkIntArray.h>
 #include <vtkNew.h>
@@ -12,6 +11,7 @@
 #include <vtkPointData.h>
 #include <vtkPoints.h>
 #include <vtkPolyData.h>
+#include <vtkStringArray.h>
 #include <vtkXMLPolyDataReader.h>
 #include <vtkXMLPolyDataWriter.h>
 
@@ -105,7 +105,8 @@ PolyData read_vtp(const std::filesystem::path& path) {
   read_point_arrays(*poly, data);
   auto* names = vtkStringArray::SafeDownCast(poly->GetFieldData()->GetAbstractArray("part_names"));
   if (names && names->GetNumberOfComponents() == 1) {
-    check_count(file, "part names", static_cast<std::uint64_t>(names->GetNumberOfValues()), kReadBudget.max_points);
+    check_count(file, "part names", static_cast<std::uint64_t>(names->GetNumberOfValues()),
+                kReadBudget.max_points);
     for (vtkIdType p = 0; p < names->GetNumberOfValues(); ++p)
       data.attributes.part_names.push_back(names->GetValue(p));
   }

@@ -25,7 +25,8 @@ int enum_index(Enum value) {
   return 0;
 }
 
-/// The labelling panel's region selections, by the script verbs they emit (their synopsis is the field's hint).
+/// The labelling panel's region selections, by the script verbs they emit (their synopsis is the field's
+/// hint).
 inline constexpr const char* kRegionVerbs[] = {"select_box", "select_plane", "select_sphere"};
 
 /// The panels' own editing state: text being typed, the tool, the last mode shown. Not app state.
@@ -43,9 +44,9 @@ struct PanelState {
   int direction = enum_index(core::RegistrationSettings{}.objective.direction);
   int loss = enum_index(core::RegistrationSettings{}.objective.loss);
   bool use_viewpoint = true;             ///< count only canonical points facing the known viewpoint
-  int variant = -1;                      ///< index into EnumNames<Variant>; -1 = the app's settings' (last used)
-  int region_tool = 0;                   ///< index into kRegionVerbs
-  std::string region_numbers;            ///< the selected region tool's numbers (data units)
+  int variant = -1;            ///< index into EnumNames<Variant>; -1 = the app's settings' (last used)
+  int region_tool = 0;         ///< index into kRegionVerbs
+  std::string region_numbers;  ///< the selected region tool's numbers (data units)
   int sample_seed = 1;
   int animated_dimension = 1;            ///< the principal direction the Animate button sweeps (from 1)
   std::string dataset_path = "dataset";  ///< folder the Train button trains on
