@@ -35,7 +35,7 @@ TEST(PanelDefaults, AChoiceMadeInThePanelIsWhatRegisterSends) {
   // default.
   ASSERT_NE(library_defaults().at("direction"), "observed");
   PanelState panel;
-  panel.direction = enum_index(core::Direction::observed);
+  panel.direction = enum_index(core::Direction::observed_to_canonical);
   panel.variant = enum_index(core::Variant::partwise);
   const std::map<std::string, std::string> sent = [&] {
     std::map<std::string, std::string> values;

@@ -40,12 +40,17 @@ void write_registered_points(const std::filesystem::path& path, const core::Cate
                              const core::RegistrationResult& result, const core::Points& observed) {
   core::Cloud cloud{result.deformed, {}};
   if (model.canonical_mesh.faces.rows() > 0) {  // each point takes its nearest deformed vertex's normal
-    core::Mesh mesh = core::deform_mesh(model, result);
+    const core::Mesh mesh = core::deform_mesh(model, result);
     const core::Points normals = vertex_normals(mesh);
+    std::vector<int> on_faces;  // a vertex on no face has no normal to give
+    for (Eigen::Index v = 0; v < normals.rows(); ++v)
+      if (normals.row(v).squaredNorm() > 0.0) on_faces.push_back(static_cast<int>(v));
     std::vector<int> nearest;
     Eigen::VectorXd squared;
-    core::KdTree(std::move(mesh.vertices)).nearest_all(result.deformed, nearest, squared);
-    cloud.normals = normals(nearest, Eigen::all);
+    core::KdTree(mesh.vertices(on_faces, Eigen::all)).nearest_all(result.deformed, nearest, squared);
+    cloud.normals.resize(result.deformed.rows(), 3);
+    for (Eigen::Index i = 0; i < cloud.normals.rows(); ++i)
+      cloud.normals.row(i) = normals.row(on_faces[static_cast<std::size_t>(nearest[static_cast<std::size_t>(i)])]);
   }
   write_cloud(path, cloud, fit_attributes(result.deformed, result.part, model.part_names, observed));
 }
