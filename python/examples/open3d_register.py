@@ -3,7 +3,7 @@
 Open3D's voxel grid, deform a partreg category model onto it, and write the deformed canonical mesh with
 Open3D (parts coloured).
 
-    python3 open3d_register.py MODEL.prm CLOUD.{ply,pcd,xyz} OUT_MESH.ply [--viewpoint X,Y,Z]
+    python3 open3d_register.py MODEL.prm CLOUD.{ply,pcd,xyz} OUT_MESH.ply [--viewpoint X Y Z]
 
 Units and frames: the cloud's own (the result is in the cloud's frame); --viewpoint is the camera position
 in that frame, so that only the canonical's side facing the camera is matched (a partial view).
@@ -24,7 +24,9 @@ def main():
     parser.add_argument("model")
     parser.add_argument("cloud")
     parser.add_argument("out_mesh")
-    parser.add_argument("--viewpoint", help="camera position X,Y,Z in the cloud's frame")
+    # Three numbers, not one "X,Y,Z" word: argparse takes "-0.7" as a number but "-0.7,0.1,0.2" as an option.
+    parser.add_argument("--viewpoint", nargs=3, type=float, metavar=("X", "Y", "Z"),
+                        help="camera position in the cloud's frame (a partial view's)")
     parser.add_argument("--voxel", type=float, default=0.005, help="voxel size (cloud's units)")
     args = parser.parse_args()
 
@@ -32,12 +34,11 @@ def main():
     if cloud.is_empty():
         sys.exit(f"open3d_register: {args.cloud} holds no points")
     cloud = cloud.voxel_down_sample(args.voxel)
-    points = np.asarray(cloud.points)  # float64 (N, 3), C-contiguous: partreg takes it as it is
     model = partreg.read_model(args.model)
     settings = {"variant": "hol+part" if model.has_parts else "holistic"}
     if args.viewpoint:
-        settings["viewpoint"] = np.array([float(v) for v in args.viewpoint.split(",")])
-    result = partreg.register(model, points, **settings)
+        settings["viewpoint"] = np.array(args.viewpoint)
+    result = partreg.register(model, cloud, **settings)  # the PointCloud itself: its points, copied once
 
     deformed = partreg.deform_mesh(model, result)
     mesh = o3d.geometry.TriangleMesh(o3d.utility.Vector3dVector(deformed.vertices),
@@ -47,7 +48,7 @@ def main():
         mesh.vertex_colors = o3d.utility.Vector3dVector(np.ascontiguousarray(colours))
     mesh.compute_vertex_normals()
     o3d.io.write_triangle_mesh(args.out_mesh, mesh)
-    print(f"{len(points)} points after Open3D's voxel grid; {result.variant} in {result.seconds:.2f} s")
+    print(f"{len(cloud.points)} points after Open3D's voxel grid; {result.variant} in {result.seconds:.2f} s")
     for fit in result.fits:
         print(f"  {fit.space}: {fit.iterations} steps, pose translation {np.round(fit.T_observed_canonical[:3, 3], 4)}")
     # A partial view covers one side: judge the fit from the seen points to the deformed surface (Open3D).

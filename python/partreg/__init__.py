@@ -1,8 +1,9 @@
 """partreg: category-level, part-based, non-rigid 3D registration.
 
-Points are numpy float64 arrays of shape (N, 3), one point per row, C-contiguous; anything else (float32,
-a transposed or strided view, a list) raises partreg.UsageError naming the fix instead of being converted
-silently. Input arrays are copied once into the library; large outputs (deformed points, parts, mesh
+Points are (N, 3), one point per row, in any form robotics code holds them: a numpy float64 or float32 array
+of any strides, an Open3D PointCloud (its points) or Vector3dVector, a list of [x, y, z]; anything else raises
+partreg.UsageError. Input points are copied once into the library (float32 and strided arrays converted in
+that copy; a list is made into a float64 array first); print() of a result says what it holds. Large outputs (deformed points, parts, mesh
 vertices, shape-space bases) are views of the C++ objects, without a copy: writeable for results (yours),
 read-only for a model's arrays (every registration reads them).
 

@@ -58,10 +58,54 @@ py::array read_only(py::array array) { return with_access(std::move(array), Acce
 
 }  // namespace
 
+namespace {
+
+// What Python code holds as a point set, as an array: a numpy array as it is; an object with a `points`
+// attribute (Open3D's PointCloud, partreg.View) by that attribute; anything else (Open3D's Vector3dVector, a
+// list of lists) through numpy.asarray, which borrows a buffer without a copy and builds one from a list.
+py::array as_array(const py::handle& object, const std::string& what) {
+  if (py::isinstance<py::array>(object)) return py::reinterpret_borrow<py::array>(object);
+  if (py::hasattr(object, "points") && !py::isinstance<py::str>(object))
+    return as_array(object.attr("points"), what);
+  try {
+    return py::module_::import("numpy").attr("asarray")(object, "float64");
+  } catch (const py::error_already_set&) {
+    throw UsageError(what +
+                     " must be points (N, 3): a numpy array, an Open3D PointCloud or Vector3dVector, or "
+                     "a list of [x, y, z]; not " +
+                     std::string(py::str(object.get_type().attr("__name__"))));
+  }
+}
+
+// Element by element, any strides: the one copy for float32 and for views that are not C-contiguous.
+template <typename T>
+void copy_strided(const py::array& array, core::Points& points) {
+  const auto* base = static_cast<const char*>(array.data());
+  const py::ssize_t row_stride = array.strides(0), column_stride = array.strides(1);
+  for (Eigen::Index r = 0; r < points.rows(); ++r)
+    for (Eigen::Index c = 0; c < 3; ++c)
+      points(r, c) =
+          static_cast<double>(*reinterpret_cast<const T*>(base + r * row_stride + c * column_stride));
+}
+
+}  // namespace
+
 core::Points to_points(const py::handle& object, const std::string& what) {
-  const py::array array = checked_array<double>(object, what, "float64", 2, 3);
+  const py::array array = as_array(object, what);
+  const bool is_double = holds<double>(array), is_float = holds<float>(array);
+  if (!is_double && !is_float)
+    throw UsageError(what + " must be float64 or float32, not " + std::string(py::str(array.dtype())) +
+                     ": convert it with numpy.asarray(x, dtype=numpy.float64)");
+  if (array.ndim() != 2 || array.shape(1) != 3)
+    throw UsageError(what + " must have shape (N, 3), not " + shape_text(array));
   core::Points points(array.shape(0), 3);
-  if (points.size() > 0) std::memcpy(points.data(), array.data(), sizeof(double) * points.size());
+  if (points.size() == 0) return points;
+  if (is_double && (array.flags() & py::array::c_style))
+    std::memcpy(points.data(), array.data(), sizeof(double) * points.size());  // row-major both: one block
+  else if (is_double)
+    copy_strided<double>(array, points);
+  else
+    copy_strided<float>(array, points);
   return points;
 }
 

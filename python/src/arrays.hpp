@@ -1,11 +1,11 @@
 #pragma once
 /// \file
 /// numpy <-> Eigen for the module, with one rule for every function:
-///  - In: point sets are float64 arrays of shape (N, 3), C-contiguous (a row per point, as core::Points).
-///    Anything else (float32, a transposed or sliced view, a list) is refused with partreg.UsageError
-///    naming the fix, never converted silently: a hidden conversion would be a hidden copy. Such an array
-///    is copied exactly once, straight into the library's Points (its functions take `const Points&`,
-///    whose memory Eigen cannot borrow from numpy).
+///  - In: point sets of shape (N, 3) as robotics code holds them: float64 or float32 numpy arrays of any
+///    strides, Open3D's PointCloud and Vector3dVector (numpy borrows their buffer), lists of [x, y, z] (numpy
+///    makes them an array). They are copied exactly once, straight into the library's Points (its functions
+///    take `const Points&`, whose memory Eigen cannot borrow from numpy): one block for a C-contiguous
+///    float64 array, element by element (converting) otherwise. Other dtypes and shapes: partreg.UsageError.
 ///  - Out: large arrays (points, parts, mesh vertices and faces) are numpy views of the C++ object that owns
 ///    them (no copy); the view keeps its owner alive. Views of results (the caller's own) are writeable, as
 ///    Open3D's vectors need; views into a model are read-only (every later registration reads them).
@@ -21,7 +21,7 @@ namespace partreg::python {
 
 namespace py = pybind11;
 
-/// `array` as Points (one copy). UsageError naming `what` for a wrong dtype, shape or memory layout.
+/// `points` as Points (one copy, see above). UsageError naming `what` for a wrong form, dtype or shape.
 core::Points to_points(const py::handle& array, const std::string& what);
 
 /// `array` as a vector of int (int32 or int64, one dimension, C-contiguous; one copy). UsageError otherwise.

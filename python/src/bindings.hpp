@@ -14,5 +14,7 @@ void bind_functions(pybind11::module_& module);
 
 /// Gripper, Grasp, read/write_grasps, sample_grasps, check_grasps, transfer_grasps (grasps.cpp).
 void bind_grasps(pybind11::module_& module);
+/// A readable __repr__ for the result and frame types bound by bind_types (after it).
+void bind_reprs(pybind11::module_& module);
 
 }  // namespace partreg::python

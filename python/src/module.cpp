@@ -19,4 +19,5 @@ PYBIND11_MODULE(_partreg, m) {
   partreg::python::bind_types(m);
   partreg::python::bind_functions(m);
   partreg::python::bind_grasps(m);
+  partreg::python::bind_reprs(m);
 }

@@ -67,11 +67,12 @@ void bind_frame(py::module_& m) {
            "position: (3,) in the category's data frame (data units); rotation: (3, 3), columns are the "
            "frame's axes (identity when omitted).")
       .def_readonly("name", &core::Frame::name)
-      .def_property_readonly("position", [](const core::Frame& f) { return copy_vector(f.position); },
-                             "(3,) position (data units)")
-      .def_property_readonly("rotation", [](const core::Frame& f) { return copy_matrix(f.rotation); },
-                             "(3, 3) rotation, columns are the frame's axes")
-      .def("__repr__", [](const core::Frame& f) { return "<partreg.Frame " + f.name + ">"; });
+      .def_property_readonly(
+          "position", [](const core::Frame& f) { return copy_vector(f.position); },
+          "(3,) position (data units)")
+      .def_property_readonly(
+          "rotation", [](const core::Frame& f) { return copy_matrix(f.rotation); },
+          "(3, 3) rotation, columns are the frame's axes");
 }
 
 void bind_shape_space(py::module_& m) {
@@ -311,8 +312,10 @@ void bind_cpd_results(py::module_& m) {
     using Result = typename std::remove_reference_t<decltype(cls)>::type;
     cls.def_readonly("sigma2", &Result::sigma2, "final Gaussian variance (normalised units squared)")
         .def_readonly("iterations", &Result::iterations)
-        .def_property_readonly("stop_reason", [](const Result& s) { return std::string(core::to_string(s.stop_reason)); },
-                               "'converged', 'max_iterations' or 'degenerate'")
+        .def_property_readonly(
+            "stop_reason", [](const Result& s) { return std::string(core::to_string(s.stop_reason)); },
+            "'converged', 'max_iterations', 'polish_limit' (the full sets' 10 iterations after coarse "
+            "subsets) or 'degenerate'")
         .def_readonly("seconds", &Result::seconds);
     cls.def_property_readonly("moved", [](py::object self) { return points_view(self.cast<Result&>().moved, self, Access::writeable); },
                               "(N, 3) the source after registration, in the target's frame");

@@ -187,6 +187,24 @@ TEST(RigidCpd, FastPathAgreesWithExactEStep) {
   EXPECT_LT(rigid_fast_against_exact(2000, {}), 0.005);  // with a coarse stage of 1000
 }
 
+// With coarse subsets, the full sets get a short polishing stage of their own: a stop there names that limit,
+// not the settings' cap, which it never reached.
+TEST(RigidCpd, AStopInThePolishingStageNamesItsLimit) {
+  const Points source = asymmetric_shape(2000, 14);
+  const Points turned = transformed(source, rotation(0.4, {0.0, 0.0, 1.0}), Eigen::Vector3d::Zero());
+  const Points target = with_noise_and_outliers(turned, 0.01, 0.1, 15);
+  RigidCpdSettings settings;
+  settings.tolerance = 1e-300;  // never converges: every stage runs out its iterations
+  const RigidCpdResult polished = register_rigid(source, target, settings);  // a coarse stage of 1000
+  EXPECT_EQ(polished.stop_reason, CpdStopReason::polish_limit);
+  EXPECT_STREQ(to_string(polished.stop_reason), "polish_limit");
+  settings.coarse_points = 0;  // the full sets alone: the settings' cap is the limit
+  settings.max_iterations = 20;
+  const RigidCpdResult capped = register_rigid(source, target, settings);
+  EXPECT_EQ(capped.stop_reason, CpdStopReason::max_iterations);
+  EXPECT_EQ(capped.iterations, 20);
+}
+
 TEST(AffineCpd, FastPathAgreesWithExactEStep) {
   const Points source = asymmetric_shape(2000, 12);
   Eigen::Matrix3d A;

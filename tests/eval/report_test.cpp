@@ -176,9 +176,16 @@ TEST(EvalReport, SeamGapsRoundTripAndShowForThePartVariantsOnly) {
 
   // Format 2 (before the seam columns), 3 (before the own-part columns) and 4 (before the mesh stretch) files
   // still read. The holistic row ends in 5 empty fields: seam gaps, own-part figures, stretch.
+  // Plain CSV (pandas.read_csv without options): the header first, as many fields as every row, no comment
+  // line.
   std::ifstream in(dir / "r.csv");
-  std::string format, header, line;
-  std::getline(in, format), std::getline(in, header), std::getline(in, line);
+  std::string header, line;
+  std::getline(in, header), std::getline(in, line);
+  const auto fields = [](const std::string& text) { return std::count(text.begin(), text.end(), ',') + 1; };
+  EXPECT_EQ(header.rfind("category,instance,canonical,", 0), 0u) << header;
+  EXPECT_EQ(fields(header), fields(line));
+  for (std::string next; std::getline(in, next);) EXPECT_EQ(fields(next), fields(header)) << next;
+  EXPECT_EQ(header.find('#'), std::string::npos);
   const auto header_before = [&](const char* column) { return header.substr(0, header.rfind(column)); };
   const auto line_without = [&](std::size_t empty_fields) {
     return line.substr(0, line.size() - empty_fields);
@@ -192,6 +199,10 @@ TEST(EvalReport, SeamGapsRoundTripAndShowForThePartVariantsOnly) {
   std::ofstream(dir / "v4.csv") << "# partreg evaluation rows, format 4\n"
                                 << header_before(",mesh_stretch_max") << "\n"
                                 << line_without(1) << "\n";
+  std::ofstream(dir / "v5.csv") << "# partreg evaluation rows, format 5\n" << header << "\n" << line << "\n";
+  EXPECT_EQ(eval::read_rows_csv(dir / "v5.csv").size(), 1u);
+  std::ofstream(dir / "other.csv") << header << ",extra\n" << line << ",1\n";
+  EXPECT_THROW(eval::read_rows_csv(dir / "other.csv"), InputError);
   for (const char* file : {"v2.csv", "v3.csv", "v4.csv"}) {
     const std::vector<eval::EvalRow> older = eval::read_rows_csv(dir / file);
     ASSERT_EQ(older.size(), 1u) << file;

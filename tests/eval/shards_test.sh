@@ -25,7 +25,7 @@ case $scheduler in
 esac
 
 # Rows in a canonical order without their time (column 24, `seconds`); tables up to the timing table.
-rows() { tail -n +3 "$1/results.csv" | awk -F, -v OFS=, '{ $24 = "" } 1' | LC_ALL=C sort; }
+rows() { tail -n +2 "$1/results.csv" | awk -F, -v OFS=, '{ $24 = "" } 1' | LC_ALL=C sort; }
 tables() { sed '/^Time per registration/,$d' "$1/tables.md"; }
 [ "$(rows "$work/whole" | wc -l)" -gt 50 ] || { echo "FAIL: the unsharded run has too few rows"; exit 1; }
 status=0

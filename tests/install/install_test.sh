@@ -61,7 +61,7 @@ if [ ! -d "$data_dir/mugs" ]; then
   exit 77
 fi
 [ -f "$model" ] || { echo "no model $model (the python_test_data fixture did not run)"; exit 1; }
-cp "$model" mugs.prm
+mkdir -p out && cp "$model" out/mugs.prm  # where the README's commands put it
 echo "== README: Use it from CMake"
 bash -euxo pipefail "$scratch/cmake_commands.sh"
 if [ "$python" != none ]; then

@@ -81,6 +81,59 @@ TEST(Outputs, VtpCloudsAndMeshesKeepEveryPointArray) {
   EXPECT_EQ(vertices.attributes.reals.at("displacement_x"), arrays.reals.at("displacement_x"));
 }
 
+// Every format that carries attributes reads back what was written: parts by index and name, normals, and
+// per-point integers and reals (PLY clouds in float32, the rest in full precision).
+TEST(Outputs, PlyAndVtpRoundTripPartsByNameNormalsAndAttributes) {
+  testing::TempDir dir;
+  const core::Cloud cloud = small_cloud(30);
+  PointAttributes written = parts_and_u(30);
+  written.integers["correspondence"] = Eigen::VectorXi::LinSpaced(30, 100, 129);
+  written.part_names = {"body", "handle", "spout rim"};  // a name may hold a space
+  for (const char* file : {"c.ply", "c_ascii.ply", "c.vtp"}) {
+    const bool ascii = std::string(file) == "c_ascii.ply";
+    write_cloud(dir / file, cloud, written, ascii ? PlyEncoding::ascii : PlyEncoding::binary);
+    const CloudFile read = read_cloud_file(dir / file);
+    const double precision = std::string(file) == "c.vtp" ? 1e-12 : 1e-6;
+    EXPECT_LT((read.cloud.points - cloud.points).cwiseAbs().maxCoeff(), precision) << file;
+    EXPECT_LT((read.cloud.normals - cloud.normals).cwiseAbs().maxCoeff(), precision) << file;
+    EXPECT_EQ(read.attributes.integers, written.integers) << file;
+    EXPECT_LT((read.attributes.reals.at("u") - written.reals.at("u")).cwiseAbs().maxCoeff(), precision)
+        << file;
+    EXPECT_EQ(read.attributes.part_names, written.part_names) << file;
+  }
+
+  core::Mesh mesh;  // a tetrahedron with its own (made-up) unit normals
+  mesh.vertices.resize(4, 3);
+  mesh.vertices << 0, 0, 0, 1, 0, 0, 0, 1, 0, 0, 0, 1;
+  mesh.faces.resize(4, 3);
+  mesh.faces << 0, 2, 1, 0, 1, 3, 0, 3, 2, 1, 2, 3;
+  mesh.normals = (mesh.vertices.rowwise() - Eigen::RowVector3d(0.25, 0.25, 0.25)).rowwise().normalized();
+  PointAttributes arrays;
+  arrays.integers["part"] = Eigen::Vector4i(0, 0, 1, 1);
+  arrays.reals["residual"] = Eigen::Vector4d(0.1, 0.2, 0.3, 0.4);
+  arrays.part_names = {"body", "handle"};
+  for (const char* file : {"m.ply", "m.vtp"}) {
+    write_mesh(dir / file, mesh, arrays);
+    const MeshFile read = read_mesh_file(dir / file);
+    ASSERT_EQ(read.mesh.vertices.rows(), 4) << file;
+    ASSERT_EQ(read.mesh.normals.rows(), 4) << file;
+    EXPECT_EQ(read.vertex_attributes.part_names, arrays.part_names) << file;
+    // The mesh reader may order the vertices its own way: each is compared with the written one it stands on.
+    for (Eigen::Index v = 0; v < 4; ++v) {
+      Eigen::Index written = 0;
+      (mesh.vertices.rowwise() - read.mesh.vertices.row(v)).rowwise().norm().minCoeff(&written);
+      EXPECT_LT((read.mesh.vertices.row(v) - mesh.vertices.row(written)).norm(), 1e-9) << file;
+      EXPECT_LT((read.mesh.normals.row(v) - mesh.normals.row(written)).norm(), 1e-8) << file;
+      EXPECT_EQ(read.vertex_attributes.integers.at("part")[v], arrays.integers.at("part")[written]) << file;
+      EXPECT_NEAR(read.vertex_attributes.reals.at("residual")[v], arrays.reals.at("residual")[written], 1e-9)
+          << file;
+    }
+  }
+  // An OBJ keeps the mesh alone: nothing is invented on reading it back.
+  write_mesh(dir / "m.obj", mesh, arrays);
+  EXPECT_TRUE(read_mesh_file(dir / "m.obj").vertex_attributes.integers.empty());
+}
+
 TEST(Outputs, AnExtensionThatPromisesAnotherFormatIsAUsageError) {
   testing::TempDir dir;
   const core::Cloud cloud = small_cloud(5);

@@ -380,17 +380,54 @@ def test_registration_keywords_are_the_command_lines(partreg, model, observed_mu
 
 # --- bad input: the documented exception, with the library's message --------------------------------------
 
-def test_wrong_shape_raises_usage_error(partreg, model):
+def test_wrong_points_raise_usage_error(partreg, model):
     with pytest.raises(partreg.UsageError, match=r"points must have shape \(N, 3\), not \(100, 2\)"):
         partreg.register(model, np.zeros((100, 2)))
-    with pytest.raises(partreg.UsageError, match="must be a numpy array, not list"):
-        partreg.register(model, [[0.0, 0.0, 0.0]])
+    with pytest.raises(partreg.UsageError, match=r"must have shape \(N, 3\), not \(100, 2\)"):
+        partreg.register(model, [[0.0, 0.0]] * 100)
+    with pytest.raises(partreg.UsageError, match="must be points .* not object"):
+        partreg.register(model, object())
+    with pytest.raises(partreg.UsageError, match="must be float64 or float32, not int64"):
+        partreg.register(model, np.zeros((100, 3), dtype=np.int64))
 
 
-def test_float32_raises_usage_error(partreg, model):
-    points = np.random.default_rng(1).random((100, 3)).astype(np.float32)
-    with pytest.raises(partreg.UsageError, match="points must be float64, not float32"):
-        partreg.register(model, points)
+def _point_forms(points):
+    """The same points (exactly representable in float32) as every form robotics code holds them in."""
+    import open3d as o3d
+    points = points.astype(np.float32).astype(np.float64)
+    wide = np.zeros((points.shape[0], 6))
+    wide[:, ::2] = points
+    cloud = o3d.geometry.PointCloud(o3d.utility.Vector3dVector(points))
+    return points, {
+        "float64": points,
+        "float32": points.astype(np.float32),
+        "float32 transposed view": np.ascontiguousarray(points.T.astype(np.float32)).T,
+        "Fortran order": np.asfortranarray(points),
+        "strided view": wide[:, ::2],
+        "list of lists": points.tolist(),
+        "Open3D Vector3dVector": o3d.utility.Vector3dVector(points),
+        "Open3D PointCloud": cloud,
+    }
+
+
+def test_every_form_of_points_gives_the_same_points(partreg, model):
+    # Model.to_data is a pure function of its points: every form must give bit-identical output.
+    points, forms = _point_forms(np.random.default_rng(1).random((200, 3)) - 0.5)
+    expected = model.to_data(points)
+    for name, form in forms.items():
+        assert np.array_equal(model.to_data(form), expected), name
+    assert np.array_equal(model.to_data(points[::-1]), expected[::-1]), "negative strides"
+    # A wrong conversion (a transposed copy read as rows) would fail the comparison above.
+    assert not np.array_equal(model.to_data(np.ascontiguousarray(points.T).reshape(-1, 3)), expected)
+
+
+def test_float32_and_open3d_register_as_float64(partreg, model, observed_mug):
+    points, forms = _point_forms(partreg.read_cloud(observed_mug))
+    reference = partreg.register(model, points, iterations=2, refine=False)
+    for name in ("float32", "strided view", "Open3D PointCloud"):
+        result = partreg.register(model, forms[name], iterations=2, refine=False)
+        assert np.allclose(result.deformed, reference.deformed, rtol=0, atol=1e-9), name
+    assert reference.fit.mean_normalised < 0.1
 
 
 def test_an_unpickled_array_is_taken_and_a_byte_swapped_one_refused(partreg, model, observed_mug):
@@ -398,16 +435,41 @@ def test_an_unpickled_array_is_taken_and_a_byte_swapped_one_refused(partreg, mod
     points = partreg.read_cloud(observed_mug)
     unpickled = pickle.loads(pickle.dumps(points))  # float64, but another dtype object
     assert partreg.register(model, unpickled, iterations=1).deformed.shape == model.canonical.shape
-    with pytest.raises(partreg.UsageError, match="must be float64, not >f8"):
+    with pytest.raises(partreg.UsageError, match="must be float64 or float32, not >f8"):
         partreg.register(model, points.astype(">f8"))
 
 
-def test_non_contiguous_raises_usage_error(partreg, model):
-    points = np.random.default_rng(1).random((100, 3))
-    with pytest.raises(partreg.UsageError, match="not C-contiguous"):
-        partreg.register(model, np.asfortranarray(points))
-    with pytest.raises(partreg.UsageError, match="not C-contiguous"):
-        partreg.register(model, np.random.default_rng(1).random((100, 6))[:, ::2])
+def test_every_type_prints_what_it_holds(partreg, model, registered):
+    rng = np.random.default_rng(3)
+    source = rng.random((300, 3)) * [1.0, 0.3, 0.1]  # a slab: no symmetry under the turn below
+    turn = np.radians(30.0)
+    target = source @ np.array([[np.cos(turn), -np.sin(turn), 0], [np.sin(turn), np.cos(turn), 0], [0, 0, 1]]).T
+    rigid = partreg.cpd(source, target, mode="rigid")
+    angle = np.degrees(np.arccos((np.trace(rigid.rotation) - 1) / 2))
+    assert angle == pytest.approx(30.0, abs=0.5)
+    printed = {
+        "Model": (model, "mugs"),
+        "ShapeSpace": (model.spaces[0], "holistic"),
+        "Mesh": (model.canonical_mesh, "vertices"),
+        "Frame": (partreg.Frame("grasp", np.array([1.0, 2.0, 3.0])), "grasp at [1, 2, 3]"),
+        "RegistrationResult": (registered, f"hol+part: {registered.deformed.shape[0]} points"),
+        "FitStatistics": (registered.fit, f"{100 * registered.fit.mean_normalised:.3g}% of the diagonal"),
+        "SpaceFit": (registered.fits[0], f"holistic: latent [{registered.fits[0].latent[0]:.4g}"),
+        "HistoryStep": (registered.history[0], "cost"),
+        "Refinement": (registered.refinement, f"{registered.refinement.points} points"),
+        "MixtureFinish": (registered.mixture, "not applied"),
+        "RigidCpdResult": (rigid, f"rotation {angle:.4g} deg"),
+        "AffineCpdResult": (partreg.cpd(source, target, mode="affine"), "300 points"),
+        "NonrigidCpdResult": (partreg.cpd(source, target, max_iterations=5), "5 iterations"),
+        "View": (partreg.views(source, count=12)[0], "points from ["),
+    }
+    classes = {name for name in dir(partreg) if isinstance(getattr(partreg, name), type)
+               and not issubclass(getattr(partreg, name), Exception)}
+    assert classes == set(printed), "every class of the module is printed here"
+    for name, (value, expected) in printed.items():
+        text = repr(value)
+        assert text.startswith(f"<partreg.{name} ") and "object at 0x" not in text, text
+        assert expected in text, f"{name}: {text}"
 
 
 def test_nan_points_raise_input_error(partreg, model, observed_mug):
@@ -472,35 +534,77 @@ def test_registration_releases_the_interpreter_lock(partreg, model, observed_mug
     assert resumed < 0.5 * seconds, f"this thread ran again only after {resumed:.3f} s of a {seconds:.3f} s call"
 
 
+def _stub_members(node, stubbed):
+    """The public names a stub class declares (methods, properties, attributes), its stub bases' included."""
+    import ast
+    names = set()
+    for base in node.bases:
+        if isinstance(base, ast.Name) and base.id in stubbed:
+            names |= _stub_members(stubbed[base.id], stubbed)
+    for item in node.body:
+        if isinstance(item, (ast.FunctionDef, ast.AnnAssign)):
+            name = item.name if isinstance(item, ast.FunctionDef) else item.target.id
+            if not name.startswith("_") or name == "__init__":
+                names.add(name)
+    return names
+
+
+def _stub_parameters(function):
+    import ast
+    arguments = function.args
+    positional = arguments.posonlyargs + arguments.args
+    defaults = [None] * (len(positional) - len(arguments.defaults)) + list(arguments.defaults)
+    named = [(a.arg, ast.unparse(d) if d is not None else None) for a, d in zip(positional, defaults)]
+    named += [(a.arg, ast.unparse(d) if d is not None else None)
+              for a, d in zip(arguments.kwonlyargs, arguments.kw_defaults)]
+    return named + ([("**", None)] if arguments.kwarg else [])
+
+
+def _compiled_parameters(member, name):
+    """A pybind11 function's parameters, from the signature on the first line of its docstring."""
+    import ast
+    signature = member.__doc__.splitlines()[0].split(" -> ")[0]
+    signature = signature[signature.index("("):]
+    return _stub_parameters(ast.parse(f"def f{signature}: pass").body[0])
+
+
+def _same_parameters(stub_node, member, name):
+    theirs, mine = _stub_parameters(stub_node), _compiled_parameters(member, name)
+    assert [n for n, _ in theirs] == [n for n, _ in mine], f"{name}: parameters differ: {theirs} against {mine}"
+    import ast
+    for (parameter, stub_default), (_, module_default) in zip(theirs, mine):
+        if module_default is not None and stub_default is not None:
+            assert ast.literal_eval(stub_default) == ast.literal_eval(module_default), f"{name}({parameter})"
+
+
 def test_type_stub_matches_the_module(partreg):
-    # The stub names every public function and class, with the module's own parameter names and defaults
+    # The stub names every public function and class of the module and nothing else; every class's methods,
+    # properties and attributes, and nothing else; with the module's own parameter names and defaults
     # (pybind11 writes each function's signature as the first line of its docstring).
     import ast
     import pathlib
     stub = ast.parse((pathlib.Path(partreg.__file__).parent / "__init__.pyi").read_text())
     stubbed = {node.name: node for node in stub.body if isinstance(node, (ast.FunctionDef, ast.ClassDef))}
-    public = [name for name in dir(partreg) if not name.startswith("_") and name not in ("model_format_version",)]
-    assert sorted(set(public) - set(stubbed)) == [], "public names missing from __init__.pyi"
+    public = {name for name in dir(partreg) if not name.startswith("_") and name != "model_format_version"}
+    public_stubbed = {name for name in stubbed if not name.startswith("_")}
+    assert sorted(public - public_stubbed) == [], "public names missing from __init__.pyi"
+    assert sorted(public_stubbed - public) == [], "names in __init__.pyi that the module does not have"
 
-    def parameters(function):
-        arguments = function.args
-        positional = arguments.posonlyargs + arguments.args
-        defaults = [None] * (len(positional) - len(arguments.defaults)) + list(arguments.defaults)
-        named = [(a.arg, ast.unparse(d) if d is not None else None) for a, d in zip(positional, defaults)]
-        named += [(a.arg, ast.unparse(d) if d is not None else None)
-                  for a, d in zip(arguments.kwonlyargs, arguments.kw_defaults)]
-        return named + ([("**" + arguments.kwarg.arg, None)] if arguments.kwarg else [])
-
-    for name, node in stubbed.items():
-        member = getattr(partreg, name, None)
-        if not isinstance(node, ast.FunctionDef) or not callable(member):
+    for name in sorted(public):
+        node, member = stubbed[name], getattr(partreg, name)
+        if isinstance(node, ast.FunctionDef):
+            _same_parameters(node, member, name)
             continue
-        signature = member.__doc__.splitlines()[0].split(" -> ")[0]
-        compiled = ast.parse(f"def {signature}: pass").body[0]
-        mine = [(n, d) for n, d in parameters(compiled)]
-        theirs = [(n if not n.startswith("**") else "**", d) for n, d in parameters(node)]
-        mine = [(n if not n.startswith("**") else "**", d) for n, d in mine]
-        assert [n for n, _ in theirs] == [n for n, _ in mine], f"{name}: parameters differ"
-        for (parameter, stub_default), (_, module_default) in zip(theirs, mine):
-            if module_default is not None and stub_default is not None:
-                assert ast.literal_eval(stub_default) == ast.literal_eval(module_default), f"{name}({parameter})"
+        if issubclass(member, Exception):
+            continue
+        # A class bound with a constructor has pybind11's __init__ (its signature first in its docstring).
+        declared = {key for key in vars(member) if not key.startswith("_")}
+        if (member.__init__.__doc__ or "").startswith("__init__("):
+            declared.add("__init__")
+        members = _stub_members(node, stubbed)
+        assert sorted(declared - members) == [], f"{name}: members missing from __init__.pyi"
+        assert sorted(members - declared) == [], f"{name}: members in __init__.pyi that the module does not have"
+        for item in node.body:
+            if isinstance(item, ast.FunctionDef) and not any(
+                    isinstance(d, ast.Name) and d.id == "property" for d in item.decorator_list):
+                _same_parameters(item, getattr(member, item.name), f"{name}.{item.name}")

@@ -37,7 +37,10 @@ TEST(ShapeSpace, SlidersDeformTheCanonicalMeshByEq4) {
 
 TEST(ShapeSpace, PartSpacesMoveTheirPartAndTheSeamBandOnly) {
   AppState state;
+  // A labelled mesh loaded first puts the app on the labelling tab; opening a model moves it to its spaces.
+  execute(state, make_command("mode", {"labelling"}));
   execute(state, make_command("load", {testing::small_model_path().string()}));
+  EXPECT_EQ(state.mode, Mode::shape_space);
   const core::Mesh mean_parts = [&] {
     execute(state, make_command("space", {"handle"}));
     return shape_space_mesh(state);

@@ -177,6 +177,7 @@ void run_eval(EvalOptions& options) {
     if (std::find(variants.begin(), variants.end(), row.variant) != variants.end())
       registration_seconds += row.seconds, ++registrations;
   const nlohmann::json run = {
+      {"results_format", eval::kRowsFormat},
       {"dataset", options.dataset_path},
       {"protocol", options.protocol},
       {"sweeps", sweep_names(options.settings.protocol)},
@@ -224,6 +225,9 @@ void run_report(const ReportOptions& options) {
   }
   StagedFolder folder(options.out_path);
   write_reports(folder.staging(), rows);
+  const nlohmann::json run = {
+      {"results_format", eval::kRowsFormat}, {"merged", options.csv_paths}, {"rows", rows.size()}};
+  write_json_or_stdout(run, (folder.staging() / "run.json").string(), /*log=*/false);
   folder.commit();
   std::cerr << "merged " << rows.size() << " rows from " << options.csv_paths.size() << " runs into "
             << options.out_path << '\n';

@@ -24,6 +24,7 @@
 #include "partreg/io/mesh_io.hpp"
 #include "partreg/io/model_file.hpp"
 #include "partreg/io/output_format.hpp"
+#include "partreg/io/registration_outputs.hpp"
 
 namespace partreg::app {
 namespace {
@@ -38,18 +39,16 @@ struct RegisterOptions {
 };
 
 void write_outputs(const core::CategoryModel& model, const core::RegistrationResult& result,
-                   const std::vector<core::Frame>& frames, const RegisterOptions& options) {
+                   const core::Points& observed, const std::vector<core::Frame>& frames,
+                   const RegisterOptions& options) {
   if (!options.mesh_out.empty() && model.canonical_mesh.faces.rows() == 0)  // before any output is written
     throw InputError("model '" + model.category + "' has no canonical mesh (it was trained on clouds)");
   if (!options.points_out.empty()) {
-    io::PointAttributes attributes;
-    attributes.integers["part"] = result.part;
-    io::write_cloud(options.points_out, core::Cloud{result.deformed, {}}, attributes);
+    io::write_registered_points(options.points_out, model, result, observed);
     std::cerr << "wrote " << options.points_out << '\n';
   }
   if (!options.mesh_out.empty()) {
-    const core::Mesh mesh = core::deform_mesh(model, result);
-    io::write_mesh(options.mesh_out, mesh, &model.mesh_vertex_part);
+    io::write_registered_mesh(options.mesh_out, model, result, observed);
     std::cerr << "wrote " << options.mesh_out << '\n';
   }
   if (!options.frames_out.empty()) {
@@ -198,7 +197,7 @@ void run_register(const RegisterOptions& options) {
     report["mesh_stretch"] = stretch;
   }
   if (!options.truth_path.empty()) report["truth"] = truth_errors(model, observed, result, options);
-  write_outputs(model, result, frames, options);
+  write_outputs(model, result, observed, frames, options);
   if (grasps) write_carried_grasps(model, result, observed, *grasps, options.grasps_out);
   write_json_or_stdout(report, options.json_path);
 }

@@ -1,9 +1,7 @@
 // `partreg render FILES... --out IMAGE.png`: any clouds and meshes partreg reads, drawn headlessly.
-#include <array>
 #include <chrono>
 #include <filesystem>
 #include <iostream>
-#include <map>
 #include <memory>
 #include <sstream>
 #include <string>
@@ -33,31 +31,6 @@ struct RenderOptions {
   std::string antialias = "msaa";
 };
 
-// The part of each vertex of a PLY mesh written by partreg (`register --mesh-out`, `label`): its vertices
-// read as a cloud, matched to the mesh's by position in single precision (the mesh reader works in floats
-// and joins duplicate vertices). Empty when the file has no parts or a vertex has no match.
-Eigen::VectorXi mesh_vertex_part(const std::string& path, const core::Mesh& mesh) {
-  if (io::lower_extension(path) != ".ply") return {};
-  const io::CloudFile vertices = io::read_cloud_file(path);
-  const auto found = vertices.attributes.integers.find("part");
-  if (found == vertices.attributes.integers.end()) return {};
-  using Key = std::array<float, 3>;
-  const auto key = [](const core::Points& points, Eigen::Index i) {
-    return Key{static_cast<float>(points(i, 0)), static_cast<float>(points(i, 1)),
-               static_cast<float>(points(i, 2))};
-  };
-  std::map<Key, int> part_at;
-  for (Eigen::Index i = 0; i < vertices.cloud.points.rows(); ++i)
-    part_at[key(vertices.cloud.points, i)] = found->second[i];
-  Eigen::VectorXi part(mesh.vertices.rows());
-  for (Eigen::Index i = 0; i < mesh.vertices.rows(); ++i) {
-    const auto match = part_at.find(key(mesh.vertices, i));
-    if (match == part_at.end()) return {};
-    part[i] = match->second;
-  }
-  return part;
-}
-
 // Adds one file to the scene, coloured by its index, by part or not at all. Returns what it read (and a
 // warning line after it when parts were asked for and the file has none).
 std::string add_file(render::Scene& scene, const std::string& path, int index, const RenderOptions& options) {
@@ -69,8 +42,10 @@ std::string add_file(render::Scene& scene, const std::string& path, int index, c
       options.color_by == "file" ? render::file_color(index) : render::neutral_color();
   if (io::is_mesh_file(path)) {
     render::MeshItem item;
-    item.mesh = io::read_mesh(path);
-    if (options.color_by == "part") part = mesh_vertex_part(path, item.mesh);
+    io::MeshFile file = io::read_mesh_file(path);  // a .vtp or .ply file's parts come with it
+    item.mesh = std::move(file.mesh);
+    const auto found = file.vertex_attributes.integers.find("part");
+    if (options.color_by == "part" && found != file.vertex_attributes.integers.end()) part = found->second;
     item.color = file_color;
     item.shading = options.flat ? render::Shading::flat : render::Shading::smooth;
     item.wireframe = options.wireframe;

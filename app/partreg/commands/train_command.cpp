@@ -1,4 +1,5 @@
 // `partreg train DATASET --out MODEL`: learn a category's shape spaces from a folder of aligned instances.
+#include <algorithm>
 #include <filesystem>
 #include <iostream>
 #include <memory>
@@ -24,6 +25,7 @@ struct TrainOptions {
   std::string out_path;
   std::string canonical;
   std::vector<std::filesystem::path> labels_paths;
+  std::vector<std::string> held_out;  // instances left out of training (to register them as new ones)
   std::string json_path;
   io::DatasetOptions dataset;
   core::TrainingSettings settings;
@@ -77,13 +79,31 @@ void print_summary(const core::CategoryModel& model, const core::TrainingReport&
   std::cerr << "trained in " << report.seconds << " s\n";
 }
 
+// Leaves the instances named in `names` out of `dataset` (the others keep the samples they have with them).
+void hold_out(io::Dataset& dataset, const std::vector<std::string>& names) {
+  for (const std::string& name : names) {
+    auto& instances = dataset.instances;
+    const auto found =
+        std::find_if(instances.begin(), instances.end(),
+                     [&](const core::TrainingInstance& instance) { return instance.name == name; });
+    if (found == instances.end())
+      throw UsageError("--hold-out: no instance '" + name + "' in " + dataset.name);
+    instances.erase(found);
+  }
+  if (dataset.instances.size() < 2)
+    throw UsageError("--hold-out leaves " + std::to_string(dataset.instances.size()) +
+                     " instance to train on; a category needs at least 2");
+}
+
 void run_train(TrainOptions& options) {
   const core::ThreadBudget budget(options.threads);
   if (!options.canonical.empty()) options.settings.canonical = options.canonical;
   io::check_output(options.out_path, io::OutputKind::model, "--out");
   io::check_output(options.json_path, io::OutputKind::json, "--json");
   io::Dataset dataset = io::read_dataset(options.dataset_path, options.dataset);
+  hold_out(dataset, options.held_out);
   std::cerr << "dataset " << dataset.name << ": " << dataset.instances.size() << " instances"
+            << (options.held_out.empty() ? "" : " (" + std::to_string(options.held_out.size()) + " held out)")
             << (dataset.part_names.empty() ? ", no parts" : "") << '\n';
   if (!options.labels_paths.empty())
     options.settings.canonical =
@@ -120,6 +140,8 @@ void add_train_command(CLI::App& app) {
   command->add_option("--out", options->out_path, "model file to write (.prm)")->required();
   command->add_option("--canonical", options->canonical, "instance to use as canonical (default: automatic)");
   command->add_option("--labels", options->labels_paths, kLabelsHelp);
+  command->add_option("--hold-out", options->held_out,
+                      "instance to leave out of training, by name (repeatable): to register it as a new one");
   command->add_option("--samples", options->dataset.points_per_instance, "surface samples per mesh instance")
       ->capture_default_str()
       ->check(point_count_range());

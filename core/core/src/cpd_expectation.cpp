@@ -416,6 +416,7 @@ class Squarem {
 EmOutcome run_em(const Points& target, Points& moved, const EmControl& control,
                  const std::function<double(const Expectation&, double sigma2)>& m_step) {
   EmOutcome outcome;
+  outcome.stop_reason = control.at_cap;
   double sigma2 = control.initial_sigma2 > 0.0 ? control.initial_sigma2 : initial_sigma2(moved, target);
   if (!(sigma2 > 0.0)) {
     outcome.stop_reason = CpdStopReason::degenerate;
@@ -494,7 +495,10 @@ std::vector<CoarseStage> coarse_stages(Eigen::Index sources, Eigen::Index target
 EmControl next_stage_control(EmControl control, const EmOutcome& previous, bool last) {
   control.initial_sigma2 = previous.sigma2;
   control.iteration_offset += previous.iterations;
-  if (last) control.max_iterations = std::min(control.max_iterations, kFineIterations);
+  if (last && control.max_iterations > kFineIterations) {  // a stop there is this limit's, not the settings'
+    control.max_iterations = kFineIterations;
+    control.at_cap = CpdStopReason::polish_limit;
+  }
   return control;
 }
 

@@ -82,6 +82,7 @@ struct EmControl {
   /// SQUAREM steps between pairs of EM steps (docs/cpd.md): rigid and affine fast paths set it.
   bool accelerate = false;
   int iteration_offset = 0;  ///< added to the iteration numbers reported (a second stage continues the count)
+  CpdStopReason at_cap = CpdStopReason::max_iterations;  ///< the stop reason when max_iterations ran out
 };
 
 struct EmOutcome {

@@ -116,6 +116,8 @@ const char* to_string(CpdStopReason reason) {
       return "converged";
     case CpdStopReason::max_iterations:
       return "max_iterations";
+    case CpdStopReason::polish_limit:
+      return "polish_limit";
     case CpdStopReason::degenerate:
       return "degenerate";
   }

@@ -17,9 +17,12 @@
 namespace partreg::eval {
 namespace {
 
-// The first line names the layout's version (raised when a column changes meaning); the second the columns.
-// Each format added columns at the end: 3 the two seam-gap columns, 4 the own-part figures, 5 the mesh
-// stretch. Files of the earlier formats are still read (their missing figures stay empty).
+// A results file is plain CSV: one header line naming the columns, then the rows (what pandas.read_csv and a
+// spreadsheet read without options); the run's other facts are in run.json beside it, with the layout's
+// number (kRowsFormat: raised when a column changes meaning). Earlier layouts started with a "# partreg
+// evaluation rows, format N" line and added columns at the end: 3 the two seam-gap columns, 4 the own-part
+// figures, 5 the mesh stretch; plain files add the grasp columns at the end (7). They are still read (their
+// missing figures stay empty).
 #define PARTREG_FORMAT_2_COLUMNS                                                                      \
   "category,instance,canonical,fold,variant,view,direction_x,direction_y,direction_z,perturbation,"   \
   "level_index,paper_level,level,diagonal,observed_points,eq5,eq5_per_diagonal2,reverse_eq5,"         \
@@ -28,18 +31,18 @@ namespace {
 #define PARTREG_FORMAT_3_COLUMNS PARTREG_FORMAT_2_COLUMNS ",seam_gap_mean,seam_gap_max"
 #define PARTREG_FORMAT_4_COLUMNS \
   PARTREG_FORMAT_3_COLUMNS ",own_part_rms_mean_per_diagonal,own_part_rms_per_diagonal"
+#define PARTREG_FORMAT_5_COLUMNS PARTREG_FORMAT_4_COLUMNS ",mesh_stretch_max"
 struct CsvFormat {
-  const char* line;
+  const char* line;  ///< the first line of an earlier layout; "" for the current one (no such line)
   const char* header;
   std::size_t columns;
 };
 constexpr std::size_t kFormat2Columns = 24, kFormat3Columns = 26, kFormat4Columns = 28;
 // The format written first, then the older ones read.
-#define PARTREG_FORMAT_5_COLUMNS PARTREG_FORMAT_4_COLUMNS ",mesh_stretch_max"
 constexpr std::size_t kFormat5Columns = kFormat4Columns + 1;
 constexpr CsvFormat kFormats[] = {
-    {"# partreg evaluation rows, format 6", PARTREG_FORMAT_5_COLUMNS PARTREG_GRASP_COLUMNS,
-     kFormat5Columns + detail::kGraspColumnCount},
+    {"", PARTREG_FORMAT_5_COLUMNS PARTREG_GRASP_COLUMNS, kFormat5Columns + detail::kGraspColumnCount},
+    {"", PARTREG_FORMAT_5_COLUMNS, kFormat5Columns},
     {"# partreg evaluation rows, format 5", PARTREG_FORMAT_5_COLUMNS, kFormat5Columns},
     {"# partreg evaluation rows, format 4", PARTREG_FORMAT_4_COLUMNS, kFormat4Columns},
     {"# partreg evaluation rows, format 3", PARTREG_FORMAT_3_COLUMNS, kFormat3Columns},
@@ -194,7 +197,7 @@ std::vector<std::string> baselines_of(const std::vector<EvalRow>& rows) {
 void write_rows_csv(const std::filesystem::path& path, const std::vector<EvalRow>& rows) {
   std::ofstream out(path);
   if (!out) throw InputError("cannot write " + path.string());
-  out << kFormat.line << '\n' << kFormat.header << '\n' << std::setprecision(9);
+  out << kFormat.header << '\n' << std::setprecision(9);
   for (const EvalRow& r : rows) {
     out << r.category << ',' << r.instance << ',' << r.canonical << ',' << r.fold << ',' << r.variant << ','
         << r.view << ',' << r.direction.x() << ',' << r.direction.y() << ',' << r.direction.z() << ','
@@ -222,18 +225,23 @@ std::vector<EvalRow> read_rows_csv(const std::filesystem::path& path) {
   std::ifstream in(path);
   if (!in) throw InputError("cannot read " + path.string());
   std::string line;
-  if (!std::getline(in, line) || line.rfind("# partreg evaluation rows", 0) != 0)
-    throw InputError(path.string() + " is not a partreg evaluation CSV (its first line names no format)");
-  const auto format = std::find_if(std::begin(kFormats), std::end(kFormats),
-                                   [&](const CsvFormat& known) { return line == known.line; });
+  if (!std::getline(in, line))
+    throw InputError(path.string() + " is not a partreg evaluation CSV (it is empty)");
+  const bool labelled = line.rfind("# partreg evaluation rows", 0) == 0;  // an earlier layout's first line
+  const auto format = std::find_if(std::begin(kFormats), std::end(kFormats), [&](const CsvFormat& known) {
+    return labelled ? line == known.line : line == known.header;
+  });
+  if (labelled && format == std::end(kFormats))
+    throw InputError(
+        path.string() + " has another format (" + line.substr(2) +
+        "; this partreg reads the current one and formats 5, 4, 3 and 2): run the evaluation again");
   if (format == std::end(kFormats))
-    throw InputError(path.string() + " has another format (" + line.substr(2) + "; this partreg reads " +
-                     std::string(kFormat.line).substr(2) + ", 4, 3 and 2): run the evaluation again");
-  if (!std::getline(in, line) || line != format->header)
+    throw InputError(path.string() + " is not a partreg evaluation CSV of this version (its header differs)");
+  if (labelled && (!std::getline(in, line) || line != format->header))
     throw InputError(path.string() + " is not a partreg evaluation CSV (header differs)");
   const std::size_t columns = format->columns;
   std::vector<EvalRow> rows;
-  for (int number = 3; std::getline(in, line); ++number) {
+  for (int number = labelled ? 3 : 2; std::getline(in, line); ++number) {
     if (line.empty()) continue;
     const std::vector<std::string> fields = split(line);
     try {

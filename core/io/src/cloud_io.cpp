@@ -95,6 +95,7 @@ CloudFile read_ply_cloud(const std::filesystem::path& path, std::uint64_t file_s
     else
       result.attributes.reals[property.name] = columns[property.name];
   }
+  result.attributes.part_names = detail::part_names_from_comments(header.comments);
   return result;
 }
 
@@ -178,7 +179,8 @@ void put_ply(std::ostream& out, const core::Cloud& cloud, const PointAttributes&
   {
     out << "ply\nformat " << (binary ? "binary_little_endian" : "ascii")
         << " 1.0\ncomment written by partreg\n"
-        << "element vertex " << n << "\nproperty float x\nproperty float y\nproperty float z\n";
+        << detail::part_name_comments(attributes.part_names) << "element vertex " << n
+        << "\nproperty float x\nproperty float y\nproperty float z\n";
     if (normals) out << "property float nx\nproperty float ny\nproperty float nz\n";
     for (const auto& entry : attributes.integers) out << "property int " << entry.first << '\n';
     for (const auto& entry : attributes.reals) out << "property float " << entry.first << '\n';

@@ -3,9 +3,12 @@
 #include <assimp/postprocess.h>
 #include <assimp/scene.h>
 
+#include <array>
 #include <assimp/Importer.hpp>
 #include <fstream>
+#include <map>
 #include <sstream>
+#include <vector>
 
 #include "off_reader.hpp"
 #include "partreg/core/errors.hpp"
@@ -119,6 +122,7 @@ core::Mesh read_mesh(const std::filesystem::path& path) {
   } else if (extension == ".vtp") {
     detail::PolyData data = detail::read_vtp(path);
     mesh.vertices = std::move(data.points);
+    mesh.normals = std::move(data.normals);
     mesh.faces = std::move(data.faces);
   } else {
     if (extension == ".ply") detail::check_ply_mesh(path);  // assimp trusts PLY headers and face lists
@@ -141,14 +145,22 @@ void put_obj(std::ostream& out, const core::Mesh& mesh) {
     out << "f " << mesh.faces(f, 0) + 1 << ' ' << mesh.faces(f, 1) + 1 << ' ' << mesh.faces(f, 2) + 1 << '\n';
 }
 
-void put_ply(std::ostream& out, const core::Mesh& mesh, const Eigen::VectorXi* vertex_part) {
-  out << "ply\nformat ascii 1.0\ncomment written by partreg\nelement vertex " << mesh.vertices.rows()
-      << "\nproperty double x\nproperty double y\nproperty double z\n"
-      << (vertex_part ? "property int part\n" : "") << "element face " << mesh.faces.rows()
-      << "\nproperty list uchar int vertex_indices\nend_header\n";
+// ASCII, so that the coordinates keep 9 significant digits; normals and every per-vertex attribute as vertex
+// properties, the part names as header comments.
+void put_ply(std::ostream& out, const core::Mesh& mesh, const PointAttributes& attributes) {
+  const bool normals = mesh.normals.rows() == mesh.vertices.rows() && mesh.vertices.rows() > 0;
+  out << "ply\nformat ascii 1.0\ncomment written by partreg\n"
+      << detail::part_name_comments(attributes.part_names) << "element vertex " << mesh.vertices.rows()
+      << "\nproperty double x\nproperty double y\nproperty double z\n";
+  if (normals) out << "property double nx\nproperty double ny\nproperty double nz\n";
+  for (const auto& entry : attributes.integers) out << "property int " << entry.first << '\n';
+  for (const auto& entry : attributes.reals) out << "property double " << entry.first << '\n';
+  out << "element face " << mesh.faces.rows() << "\nproperty list uchar int vertex_indices\nend_header\n";
   for (Eigen::Index v = 0; v < mesh.vertices.rows(); ++v) {
     out << mesh.vertices(v, 0) << ' ' << mesh.vertices(v, 1) << ' ' << mesh.vertices(v, 2);
-    if (vertex_part) out << ' ' << (*vertex_part)[v];
+    if (normals) out << ' ' << mesh.normals(v, 0) << ' ' << mesh.normals(v, 1) << ' ' << mesh.normals(v, 2);
+    for (const auto& entry : attributes.integers) out << ' ' << entry.second[v];
+    for (const auto& entry : attributes.reals) out << ' ' << entry.second[v];
     out << '\n';
   }
   for (Eigen::Index f = 0; f < mesh.faces.rows(); ++f)
@@ -170,16 +182,72 @@ void write_mesh(const std::filesystem::path& path, const core::Mesh& mesh,
     if (values.size() != n) throw UsageError("one '" + name + "' value per mesh vertex is required");
   for (const auto& [name, values] : attributes.reals)
     if (values.size() != n) throw UsageError("one '" + name + "' value per mesh vertex is required");
-  const auto part = attributes.integers.find("part");
   write_atomically(path, [&](const std::filesystem::path& temporary) {
     std::ofstream out(temporary, std::ios::binary);
     out.precision(9);
     if (format == FileFormat::obj) put_obj(out, mesh);
-    if (format == FileFormat::ply)
-      put_ply(out, mesh, part == attributes.integers.end() ? nullptr : &part->second);
-    if (format == FileFormat::vtp) detail::write_vtp(out, {mesh.vertices, {}, mesh.faces, attributes});
+    if (format == FileFormat::ply) put_ply(out, mesh, attributes);
+    if (format == FileFormat::vtp)
+      detail::write_vtp(out, {mesh.vertices, mesh.normals, mesh.faces, attributes});
     if (!out.flush()) throw InputError("cannot write " + path.string());
   });
+}
+
+namespace {
+
+// The row of the file's vertex element (read as a cloud) at each mesh vertex, matched by position in single
+// precision (the mesh reader works in floats and joins identical vertices); empty when a vertex has no match,
+// as for a file whose vertices are not the mesh's.
+std::vector<int> matching_rows(const core::Points& file_vertices, const core::Mesh& mesh) {
+  using Key = std::array<float, 3>;
+  const auto key = [](const core::Points& points, Eigen::Index i) {
+    return Key{static_cast<float>(points(i, 0)), static_cast<float>(points(i, 1)),
+               static_cast<float>(points(i, 2))};
+  };
+  std::map<Key, int> row_at;
+  for (Eigen::Index i = 0; i < file_vertices.rows(); ++i) row_at[key(file_vertices, i)] = static_cast<int>(i);
+  std::vector<int> rows(static_cast<std::size_t>(mesh.vertices.rows()));
+  for (Eigen::Index v = 0; v < mesh.vertices.rows(); ++v) {
+    const auto match = row_at.find(key(mesh.vertices, v));
+    if (match == row_at.end()) return {};
+    rows[static_cast<std::size_t>(v)] = match->second;
+  }
+  return rows;
+}
+
+// A PLY mesh's per-vertex normals and attributes, by the vertex rows that match the mesh's.
+void read_ply_vertex_data(const std::filesystem::path& path, MeshFile& file) {
+  const CloudFile vertices = read_cloud_file(path);
+  const std::vector<int> rows = matching_rows(vertices.cloud.points, file.mesh);
+  if (rows.empty()) return;
+  for (const auto& [name, values] : vertices.attributes.integers)
+    file.vertex_attributes.integers[name] = values(rows).eval();
+  for (const auto& [name, values] : vertices.attributes.reals)
+    file.vertex_attributes.reals[name] = values(rows).eval();
+  file.vertex_attributes.part_names = vertices.attributes.part_names;
+  if (vertices.cloud.normals.rows() == vertices.cloud.points.rows())
+    file.mesh.normals = vertices.cloud.normals(rows, Eigen::all).eval();
+}
+
+}  // namespace
+
+MeshFile read_mesh_file(const std::filesystem::path& path) {
+  MeshFile file;
+  if (lower_extension(path) != ".vtp") {
+    file.mesh = read_mesh(path);
+    if (lower_extension(path) == ".ply") read_ply_vertex_data(path, file);
+    return file;
+  }
+  detail::PolyData data = detail::read_vtp(path);  // vertices as stored: the arrays need no matching
+  file.mesh.vertices = std::move(data.points);
+  file.mesh.normals = std::move(data.normals);
+  file.mesh.faces = without_degenerate(data.faces);
+  file.vertex_attributes = std::move(data.attributes);
+  if (file.mesh.faces.rows() == 0)
+    throw InputError(path.string() + " has no faces: it is a point cloud, read it as a cloud");
+  if (!file.mesh.vertices.allFinite())
+    throw InputError(path.string() + " has NaN or infinite vertex coordinates");
+  return file;
 }
 
 }  // namespace partreg::io

@@ -133,7 +133,9 @@ PlyHeader read_ply_header(std::istream& in, const std::string& file) {
       }
       if (property.name.empty()) throw InputError(file + ": malformed PLY property line '" + line + "'");
       header.elements.back().properties.push_back(property);
-    } else if (keyword != "comment" && keyword != "obj_info" && !keyword.empty()) {
+    } else if (keyword == "comment") {
+      header.comments.push_back(line.size() > 8 ? line.substr(8) : "");
+    } else if (keyword != "obj_info" && !keyword.empty()) {
       // assimp aborts on some lines it does not know: the PLY grammar has no others.
       throw InputError(file + ": unknown PLY header line '" + line.substr(0, 40) +
                        "' (is end_header missing?)");
@@ -228,6 +230,29 @@ void check_ply_mesh_header(const PlyHeader& header, const std::string& file) {
     return;
   }
   throw InputError(file + ": PLY file has no vertex element");
+}
+
+std::string part_name_comments(const std::vector<std::string>& part_names) {
+  std::string lines;
+  for (std::size_t p = 0; p < part_names.size(); ++p)
+    lines += "comment part_name " + std::to_string(p) + ' ' + part_names[p] + '\n';
+  return lines;
+}
+
+std::vector<std::string> part_names_from_comments(const std::vector<std::string>& comments) {
+  constexpr std::size_t kMaxParts = 1000;  // a part index is small; a huge one is not a name of ours
+  std::vector<std::string> names;
+  for (const std::string& comment : comments) {
+    std::istringstream words(comment);
+    std::string keyword;
+    std::size_t index = 0;
+    if (!(words >> keyword >> index) || keyword != "part_name" || index >= kMaxParts) continue;
+    std::string name;
+    std::getline(words >> std::ws, name);
+    if (names.size() <= index) names.resize(index + 1);
+    names[index] = name;
+  }
+  return names;
 }
 
 }  // namespace partreg::io::detail

@@ -25,8 +25,17 @@ struct PlyElement {
 struct PlyHeader {
   enum class Format { ascii, binary_little_endian, binary_big_endian } format = Format::ascii;
   std::vector<PlyElement> elements;
+  std::vector<std::string> comments;  ///< the text after "comment ", in order
   std::size_t count_of(const std::string& element) const;
 };
+
+/// Part names in a PLY header, one comment line each: "comment part_name INDEX NAME" (a name may hold
+/// spaces). What partreg writes for an int `part` property, so that a file carries its parts by name.
+std::string part_name_comments(const std::vector<std::string>& part_names);
+
+/// The part names of such comments, by index (an index without a comment gets an empty name); empty when
+/// there are none.
+std::vector<std::string> part_names_from_comments(const std::vector<std::string>& comments);
 
 /// Parses the header and leaves `in` at the first byte of the data. Throws InputError naming `file` for a
 /// malformed header, one without end_header, or counts beyond the reading budget (read_limits.hpp).

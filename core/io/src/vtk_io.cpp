@@ -3,6 +3,7 @@
 #include <vtkCellArray.h>
 #include <vtkDataArray.h>
 #include <vtkDoubleArray.h>
+#include <vtkFieldData.h>
 #include <vtkIdList.h>
 #include <vtkIntArray.h>
 #include <vtkNew.h>
@@ -10,6 +11,7 @@
 #include <vtkPointData.h>
 #include <vtkPoints.h>
 #include <vtkPolyData.h>
+#include <vtkStringArray.h>
 #include <vtkXMLPolyDataReader.h>
 #include <vtkXMLPolyDataWriter.h>
 
@@ -101,6 +103,13 @@ PolyData read_vtp(const std::filesystem::path& path) {
   }
   data.faces = triangles(*poly, file);
   read_point_arrays(*poly, data);
+  auto* names = vtkStringArray::SafeDownCast(poly->GetFieldData()->GetAbstractArray("part_names"));
+  if (names && names->GetNumberOfComponents() == 1) {
+    check_count(file, "part names", static_cast<std::uint64_t>(names->GetNumberOfValues()),
+                kReadBudget.max_points);
+    for (vtkIdType p = 0; p < names->GetNumberOfValues(); ++p)
+      data.attributes.part_names.push_back(names->GetValue(p));
+  }
   return data;
 }
 
@@ -146,6 +155,12 @@ void write_vtp(std::ostream& out, const PolyData& data) {
     array->SetNumberOfTuples(n);
     for (vtkIdType i = 0; i < n; ++i) array->SetValue(i, values[i]);
     poly->GetPointData()->AddArray(array);
+  }
+  if (!data.attributes.part_names.empty()) {  // what each value of `part` names, for partreg and ParaView
+    vtkNew<vtkStringArray> names;
+    names->SetName("part_names");
+    for (const std::string& name : data.attributes.part_names) names->InsertNextValue(name);
+    poly->GetFieldData()->AddArray(names);
   }
   vtkNew<vtkXMLPolyDataWriter> writer;
   writer->SetInputData(poly);

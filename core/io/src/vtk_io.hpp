@@ -11,7 +11,8 @@
 namespace partreg::io::detail {
 
 /// What a .vtp file holds for partreg: points, their normals (when present), triangles (polygons are
-/// fanned; vertex and line cells ignored) and every one-component point array as an attribute.
+/// fanned; vertex and line cells ignored), every one-component point array as an attribute, and the
+/// field-data string array `part_names` as the attributes' part names.
 struct PolyData {
   core::Points points;
   core::Points normals;

@@ -9,6 +9,7 @@
 #include <filesystem>
 #include <optional>
 
+#include "partreg/ui/executor.hpp"
 #include "partreg/ui/labelling.hpp"
 
 namespace partreg::ui {
@@ -35,6 +36,19 @@ std::string number_text(double value) {
   char buffer[32];
   std::snprintf(buffer, sizeof(buffer), "%.3f", value);
   return buffer;
+}
+
+// Faces inside a box, on one side of a plane or inside a sphere (the mesh's units) go to the current part,
+// as the script's select_box, select_plane and select_sphere verbs do.
+void region_selection(PanelState& panel, std::vector<Command>& out) {
+  ImGui::Separator();
+  static constexpr const char* labels[] = {"Box", "Plane (the normal's side)", "Sphere"};
+  static_assert(std::size(labels) == std::size(kRegionVerbs));
+  ImGui::Combo("Region", &panel.region_tool, labels, static_cast<int>(std::size(labels)));
+  const char* verb = kRegionVerbs[panel.region_tool];
+  input_text("##region", panel.region_numbers, find_verb(verb)->synopsis.c_str());
+  ImGui::SameLine();
+  if (ImGui::Button("Select")) emit(out, verb, {panel.region_numbers});
 }
 
 void labelling_panel(const AppState& state, PanelState& panel, std::vector<Command>& out) {
@@ -92,6 +106,7 @@ void labelling_panel(const AppState& state, PanelState& panel, std::vector<Comma
       if (ImGui::Button(("Merge into " + other).c_str())) emit(out, "merge_part", {current, other});
     }
   }
+  region_selection(panel, out);
   ImGui::Separator();
   if (ImGui::Button("Undo")) emit(out, "undo");
   ImGui::SameLine();
@@ -228,15 +243,16 @@ std::string name_at(int index) {
 
 // The variant and the objective; Register emits them as the register command's options.
 void registration_options(const AppState& state, PanelState& panel, std::vector<Command>& out) {
-  if (panel.variant < 0) panel.variant = static_cast<int>(state.registration.settings.variant);
+  if (panel.variant < 0) panel.variant = enum_index(state.registration.settings.variant);
   enum_combo<core::Variant>("Variant", panel.variant);
   enum_combo<core::Direction>("Closest points", panel.direction);
   enum_combo<core::Loss>("Loss", panel.loss);
   if (state.registration.viewpoint) ImGui::Checkbox("Use the viewpoint", &panel.use_viewpoint);
   if (!ImGui::Button("Register")) return;
-  Command command = make_command(
-      "register", {name_at<core::Variant>(panel.variant)},
-      {{"direction", name_at<core::Direction>(panel.direction)}, {"loss", name_at<core::Loss>(panel.loss)}});
+  std::vector<std::pair<std::string, std::string>> options = registration_panel_options(state, panel);
+  const std::string variant = options.front().second;
+  options.erase(options.begin());
+  Command command = make_command("register", {variant}, std::move(options));
   if (state.registration.viewpoint && !panel.use_viewpoint) command.options.emplace_back("viewpoint", "none");
   out.push_back(std::move(command));
 }
@@ -292,6 +308,14 @@ void file_row(const AppState& state, PanelState& panel, std::vector<Command>& ou
 }
 
 }  // namespace
+
+std::vector<std::pair<std::string, std::string>> registration_panel_options(const AppState& state,
+                                                                            const PanelState& panel) {
+  const int variant = panel.variant < 0 ? enum_index(state.registration.settings.variant) : panel.variant;
+  return {{"variant", name_at<core::Variant>(variant)},
+          {"direction", name_at<core::Direction>(panel.direction)},
+          {"loss", name_at<core::Loss>(panel.loss)}};
+}
 
 void draw_panels(const AppState& state, PanelState& panel, std::vector<Command>& out) {
   const ImGuiIO& io = ImGui::GetIO();

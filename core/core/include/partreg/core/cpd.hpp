@@ -17,8 +17,9 @@
 
 namespace partreg::core {
 
-/// Why an EM loop ended.
-enum class CpdStopReason { converged, max_iterations, degenerate };
+/// Why an EM loop ended: converged (the tolerance), max_iterations (the settings' cap), polish_limit (the
+/// full sets' short stage after the coarse subsets ran its 10 iterations; docs/cpd.md), degenerate.
+enum class CpdStopReason { converged, max_iterations, polish_limit, degenerate };
 const char* to_string(CpdStopReason reason);
 
 /// Rigid CPD settings.

@@ -12,10 +12,16 @@
 
 namespace partreg::eval {
 
-/// Writes rows as CSV with a header line. Throws InputError when the file cannot be written.
+/// The layout of results.csv (its columns and their meaning), recorded in run.json beside it: raised when a
+/// column changes meaning. The CSV itself is plain: a header line, then the rows.
+inline constexpr int kRowsFormat = 7;
+
+/// Writes rows as CSV: one header line naming the columns, then one line per row (pandas.read_csv reads it
+/// without options). Throws InputError when the file cannot be written.
 void write_rows_csv(const std::filesystem::path& path, const std::vector<EvalRow>& rows);
 
-/// Reads rows written by write_rows_csv. InputError naming the file and line for anything else.
+/// Reads rows written by write_rows_csv, or by an earlier partreg (a "# partreg evaluation rows, format N"
+/// first line, N 2 to 5). InputError naming the file and line for anything else.
 std::vector<EvalRow> read_rows_csv(const std::filesystem::path& path);
 
 /// The mean of Eq. 5 (normalised by the squared diagonal) over the rows that match; NaN when none match.

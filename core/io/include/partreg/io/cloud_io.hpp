@@ -10,6 +10,7 @@
 #include <filesystem>
 #include <map>
 #include <string>
+#include <vector>
 
 #include "partreg/core/types.hpp"
 
@@ -19,6 +20,9 @@ namespace partreg::io {
 struct PointAttributes {
   std::map<std::string, Eigen::VectorXi> integers;
   std::map<std::string, Eigen::VectorXd> reals;
+  /// The name of each value of the integer `part` (index = value), when known: .ply files keep them as
+  /// "comment part_name INDEX NAME" header lines, .vtp files as the field-data string array `part_names`.
+  std::vector<std::string> part_names;
 };
 
 /// A cloud as read from a file. Points with a NaN or infinite coordinate are dropped (sensor clouds hold
