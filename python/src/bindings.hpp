@@ -12,4 +12,7 @@ void bind_types(pybind11::module_& module);
 /// read/write, train, register, deform, transfer, cpd, views, errors.
 void bind_functions(pybind11::module_& module);
 
+/// segment_depth, register_depth: depth images in the camera frame (scene_functions.cpp).
+void bind_scene_functions(pybind11::module_& module);
+
 }  // namespace partreg::python

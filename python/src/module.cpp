@@ -18,4 +18,5 @@ PYBIND11_MODULE(_partreg, m) {
   m.attr("model_format_version") = partreg::io::kModelFormatVersion;
   partreg::python::bind_types(m);
   partreg::python::bind_functions(m);
+  partreg::python::bind_scene_functions(m);
 }

@@ -18,5 +18,7 @@ void add_label_command(CLI::App& app);
 void add_render_commands(CLI::App& app);  ///< `render` and `figure` (headless OSMesa); only with ui/
 void add_views_command(CLI::App& app);
 void add_eval_command(CLI::App& app);
+void add_segment_command(CLI::App& app);  ///< cut an object out of a depth image or scene cloud
+void add_scene_command(CLI::App& app);    ///< render objects on a table as a depth camera sees them
 
 }  // namespace partreg::app
