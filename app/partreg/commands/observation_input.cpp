@@ -41,13 +41,23 @@ void log_cut(const scene::SceneCut& cut) {
 }  // namespace
 
 void add_observation_flags(CLI::App* command, ObservationInput& input, bool with_scene_flag) {
-  command->add_option("--depth", input.depth,
-                      "depth image: 16-bit PNG (depth_scale units per metre, 0 = none) or .npy float metres");
-  command->add_option("--intrinsics", input.intrinsics,
-                      "camera intrinsics JSON (fx, fy, cx, cy, width, height, depth_scale; or Open3D's)");
-  command->add_option("--mask", input.mask, "the object's pixels (PNG, non-zero = object) in the depth image");
-  if (with_scene_flag)
-    command->add_option("--scene", input.scene, "scene cloud in the camera frame, metres (PCD, PLY, ...)");
+  CLI::Option* depth = command->add_option(
+      "--depth", input.depth, "depth image: 16-bit PNG (depth_scale units per metre, 0 = none) or .npy float metres");
+  CLI::Option* intrinsics = command->add_option(
+      "--intrinsics", input.intrinsics, "camera intrinsics JSON (fx, fy, cx, cy, width, height, depth_scale; or Open3D's)");
+  depth->needs(intrinsics);
+  command->add_option("--mask", input.mask, "the object's pixels (PNG, non-zero = object) in the depth image")
+      ->needs(depth);
+  // A scene is the observation and the camera its viewpoint: the command line refuses the others with it.
+  std::vector<CLI::Option*> scene_options = {depth};
+  if (with_scene_flag) {
+    CLI::Option* scene = command->add_option("--scene", input.scene, "scene cloud in the camera frame, metres (PCD, PLY, ...)");
+    scene->excludes(depth);
+    scene_options.push_back(scene);
+  }
+  for (const char* other : {"OBSERVED", "--viewpoint"})
+    if (CLI::Option* given = command->get_option_no_throw(other))
+      for (CLI::Option* option : scene_options) option->excludes(given);
   command->add_option("--pick", input.pick,
                       "the object: U,V (a pixel) or X,Y,Z (camera frame, m); default: the cluster nearest the "
                       "image centre above the table");

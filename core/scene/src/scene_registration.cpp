@@ -1,5 +1,6 @@
 #include "partreg/scene/scene_registration.hpp"
 
+#include <algorithm>
 #include <cmath>
 
 namespace partreg::scene {

@@ -2,6 +2,7 @@
 #include "partreg/scene/segmentation.hpp"
 
 #include <Eigen/Geometry>
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <sstream>
