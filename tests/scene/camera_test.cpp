@@ -62,8 +62,12 @@ TEST(Intrinsics, OursAndOpen3dFormReadAlike) {
                                       320.5, 240.5, 1.0], "width": 640})");
   const Intrinsics ours = read_intrinsics(dir / "ours.json"), open3d = read_intrinsics(dir / "open3d.json");
   for (const Intrinsics& k : {ours, open3d}) {
-    EXPECT_EQ(k.fx, 600), EXPECT_EQ(k.fy, 610), EXPECT_EQ(k.cx, 320.5), EXPECT_EQ(k.cy, 240.5);
-    EXPECT_EQ(k.width, 640), EXPECT_EQ(k.height, 480);
+    EXPECT_EQ(k.fx, 600);
+    EXPECT_EQ(k.fy, 610);
+    EXPECT_EQ(k.cx, 320.5);
+    EXPECT_EQ(k.cy, 240.5);
+    EXPECT_EQ(k.width, 640);
+    EXPECT_EQ(k.height, 480);
   }
   EXPECT_EQ(ours.depth_scale, 4000);
   EXPECT_EQ(open3d.depth_scale, 1000);  // millimetres unless stated

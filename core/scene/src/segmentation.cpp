@@ -46,18 +46,26 @@ void check_pick(const Pick& pick, const SceneView& view) {
                      std::to_string(view.intrinsics->height) + " image");
 }
 
-// The plane, oriented so that the camera (the origin) lies on its positive side.
-detail::PlaneFit find_plane(const core::Points& points, const SegmentationSettings& settings) {
-  detail::PlaneFit fit = detail::fit_plane(points, settings);
-  const double share = points.rows() ? double(fit.inliers.size()) / double(points.rows()) : 0.0;
+// The support plane, oriented so that the camera (the origin) lies on its positive side. RANSAC runs on the
+// measured points as the camera sampled them (every k-th, up to kPlaneSample), not on the voxel grid: a pixel
+// grid weighs the near table over a far floor or wall that a voxel grid would favour for its larger area.
+constexpr Eigen::Index kPlaneSample = 50000;
+
+Eigen::Vector4d find_plane(const core::Points& measured, const SegmentationSettings& settings) {
+  const Eigen::Index step = std::max<Eigen::Index>(1, measured.rows() / kPlaneSample);
+  std::vector<int> rows;
+  for (Eigen::Index i = 0; i < measured.rows(); i += step) rows.push_back(static_cast<int>(i));
+  const core::Points sample = rows_of(measured, rows);
+  detail::PlaneFit fit = detail::fit_plane(sample, settings);
+  const double share = sample.rows() ? double(fit.inliers.size()) / double(sample.rows()) : 0.0;
   if (fit.inliers.empty() || share < settings.min_plane_share) {
     std::ostringstream what;
     what << "no support plane in the scene: the best plane holds " << fit.inliers.size() << " of "
-         << points.rows() << " points, below min_plane_share " << settings.min_plane_share;
+         << sample.rows() << " points, below min_plane_share " << settings.min_plane_share;
     throw InputError(what.str());
   }
   if (fit.plane[3] < 0) fit.plane = -fit.plane;
-  return fit;
+  return fit.plane;
 }
 
 std::vector<Cluster> describe(const core::Points& points, const std::vector<std::vector<int>>& clusters) {
@@ -155,10 +163,13 @@ SceneCut cut_scene(const SceneView& view, const Pick& pick, const SegmentationSe
   const std::vector<int> kept = detail::inlier_rows(grid, settings);
   cut.outliers_removed = static_cast<int>(grid.rows()) - static_cast<int>(kept.size());
   const core::Points working = rows_of(grid, kept);
-  const detail::PlaneFit plane = find_plane(working, settings);
-  cut.plane = plane.plane;
-  cut.up = plane.plane.head<3>();
-  cut.plane_points = rows_of(working, plane.inliers);
+  cut.plane = find_plane(view.measured.points, settings);
+  cut.up = cut.plane.head<3>();
+  std::vector<int> on_plane;
+  for (Eigen::Index i = 0; i < working.rows(); ++i)
+    if (std::abs(signed_distance(cut.plane, working.row(i).transpose())) <= settings.plane_distance)
+      on_plane.push_back(static_cast<int>(i));
+  cut.plane_points = rows_of(working, on_plane);
   if (view.mask) {
     cut.object = masked(view.measured, *view.mask);
     cut.choice = "the mask's pixels";

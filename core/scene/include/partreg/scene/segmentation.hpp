@@ -20,7 +20,7 @@ struct SegmentationSettings {
   double voxel_size = 0.004;      ///< the plane and clusters are found on a voxel grid this fine (m; 0 = none)
   double plane_distance = 0.01;   ///< RANSAC inlier distance to the plane (m)
   int plane_iterations = 1000;    ///< RANSAC iterations
-  double min_plane_share = 0.1;   ///< a plane needs at least this share of the (voxelised) points
+  double min_plane_share = 0.1;   ///< a plane needs at least this share of the measured points
   int outlier_neighbours = 20;    ///< statistical outlier removal: neighbours whose mean distance is judged
   double outlier_deviations = 2.0;  ///< ... and removed beyond this many standard deviations of that mean
   double cluster_tolerance = 0.02;  ///< Euclidean clustering: points closer than this join (m)
