@@ -126,6 +126,10 @@ void add_scene_command(CLI::App& app) {
   command->add_option("--elevation", o->layout.elevation_degrees, "camera above the table (degrees)")
       ->capture_default_str();
   command->add_option("--spacing", o->layout.spacing, "between neighbouring objects (m)")->capture_default_str();
+  command->add_option("--table-width", o->layout.table_width, "the table top across the image (m)")
+      ->capture_default_str();
+  command->add_option("--table-depth", o->layout.table_depth, "the table top away from the camera (m)")
+      ->capture_default_str();
   command->add_option("--noise", o->sensor.noise, "depth noise's standard deviation at 1 m (m; grows as depth^2)")
       ->capture_default_str();
   command->add_option("--baseline", o->sensor.baseline, "projector offset along +x (m)")->capture_default_str();
