@@ -33,6 +33,8 @@ int main(int argc, char** argv) {
   partreg::app::add_views_command(app);
   partreg::app::add_eval_command(app);
   partreg::app::add_grasps_command(app);
+  partreg::app::add_segment_command(app);
+  partreg::app::add_scene_command(app);
   partreg::app::add_verbosity_flags(app);  // after every subcommand: it adds the flags to each
 
   try {

@@ -16,5 +16,7 @@ void bind_functions(pybind11::module_& module);
 void bind_grasps(pybind11::module_& module);
 /// A readable __repr__ for the result and frame types bound by bind_types (after it).
 void bind_reprs(pybind11::module_& module);
+/// segment_depth, register_depth: depth images in the camera frame (scene_functions.cpp).
+void bind_scene_functions(pybind11::module_& module);
 
 }  // namespace partreg::python

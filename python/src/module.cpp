@@ -20,4 +20,5 @@ PYBIND11_MODULE(_partreg, m) {
   partreg::python::bind_functions(m);
   partreg::python::bind_grasps(m);
   partreg::python::bind_reprs(m);
+  partreg::python::bind_scene_functions(m);
 }

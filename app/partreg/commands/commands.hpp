@@ -19,5 +19,7 @@ void add_render_commands(CLI::App& app);  ///< `render` and `figure` (headless O
 void add_views_command(CLI::App& app);
 void add_eval_command(CLI::App& app);
 void add_grasps_command(CLI::App& app);  ///< `grasps sample` and `grasps check`
+void add_segment_command(CLI::App& app);  ///< cut an object out of a depth image or scene cloud
+void add_scene_command(CLI::App& app);    ///< render objects on a table as a depth camera sees them
 
 }  // namespace partreg::app

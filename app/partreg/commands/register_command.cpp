@@ -9,6 +9,7 @@
 #include "partreg/commands/commands.hpp"
 #include "partreg/commands/common.hpp"
 #include "partreg/commands/console.hpp"
+#include "partreg/commands/observation_input.hpp"
 #include "partreg/commands/setting_flags.hpp"
 #include "partreg/core/deformation.hpp"
 #include "partreg/core/errors.hpp"
@@ -36,6 +37,7 @@ struct RegisterOptions {
   std::size_t mesh_samples = 3000;
   int threads = 0;
   core::RegistrationSettings settings;
+  ObservationInput scene_input;  // --depth/--scene: the object is cut out of a scene (observation_input.hpp)
 };
 
 void write_outputs(const core::CategoryModel& model, const core::RegistrationResult& result,
@@ -155,10 +157,12 @@ void run_register(const RegisterOptions& options) {
       options.grasps_path.empty() ? std::nullopt
                                   : std::optional(read_grasp_request(options.grasps_path, options.gripper_path));
   const core::CategoryModel model = io::read_model(options.model_path);
-  const core::Points observed = read_points_logged(options.observed_path, options.mesh_samples, 1);
+  const Observed seen =
+      read_observed(options.observed_path, options.scene_input, options.settings, options.mesh_samples);
+  const core::Points& observed = seen.points;
   ProgressDisplay progress({"spaces fitted", /*lines_are_detail=*/true, /*log_every_percent=*/0});
   const core::RegistrationResult result =
-      core::register_observation(model, observed, options.settings, progress.listener());
+      register_observed(model, seen, options.settings, options.scene_input, progress.listener());
   progress.finish();
   for (const core::SpaceFit& fit : result.fits) {
     std::cerr << "space " << fit.space << ": " << fit.iterations << " steps ("
@@ -182,7 +186,9 @@ void run_register(const RegisterOptions& options) {
     std::cerr << "  noise " << result.mixture.noise << " of the model's diagonal (above mixture-noise): the space "
               << "fit ended in a Gaussian mixture, sigma " << result.mixture.sigma << "\n";
   nlohmann::json report =
-      io::result_json(result, options.settings, {options.model_path, options.observed_path});
+      io::result_json(result, options.settings,
+                      {options.model_path, seen.cut ? options.scene_input.source() : options.observed_path});
+  if (seen.cut) report["scene"] = cut_json(*seen.cut);
   if (result.variant != core::Variant::holistic) {
     // Whether the parts stay together: neighbouring parts' positions of the same boundary points.
     const core::SeamGap gap = core::seam_gap(model, result);
@@ -209,8 +215,8 @@ void add_register_command(CLI::App& app) {
   CLI::App* command =
       app.add_subcommand("register", "Deform a category model onto an observed cloud or mesh");
   command->add_option("MODEL", o->model_path, "model file from partreg train")->required();
-  command->add_option("OBSERVED", o->observed_path, "observed cloud or mesh (data units and frame)")
-      ->required();
+  command->add_option("OBSERVED", o->observed_path,
+                      "observed cloud or mesh (data units and frame); or a scene: --depth or --scene");
   command->add_option("--json", o->json_path, "result JSON ('-' for stdout)");
   command->add_option("--points-out", o->points_out,
                       "the deformed canonical points with their part (.ply, .pcd, .vtp, .xyz)");
@@ -222,6 +228,7 @@ void add_register_command(CLI::App& app) {
                       "where the grasps go: carried, re-seated on the registered object, ranked");
   command->add_option("--gripper", o->gripper_path, "gripper file (default: the grasps file's own)");
   add_registration_flags(command, o->settings);
+  add_observation_flags(command, o->scene_input);
   add_threads_flag(command, o->threads);
   command->add_option(
       "--truth", o->truth_path,

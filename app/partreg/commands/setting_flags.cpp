@@ -3,6 +3,7 @@
 #include "partreg/core/errors.hpp"
 #include "partreg/core/registration_options.hpp"
 #include "partreg/core/training_options.hpp"
+#include "partreg/scene/scene_options.hpp"
 
 namespace partreg::app {
 namespace {
@@ -49,6 +50,10 @@ void add_registration_flags(CLI::App* command, core::RegistrationSettings& setti
 
 void add_training_flags(CLI::App* command, core::TrainingSettings& settings, const std::set<std::string>& skip) {
   add_flags(command, core::training_options(), settings, skip);
+}
+
+void add_scene_flags(CLI::App* command, scene::SceneSettings& settings, const std::set<std::string>& skip) {
+  add_flags(command, scene::scene_options(), settings, skip);
 }
 
 void add_threads_flag(CLI::App* command, int& threads) {

@@ -11,6 +11,7 @@
 
 #include "partreg/core/registration_settings.hpp"
 #include "partreg/core/training.hpp"
+#include "partreg/scene/scene_options.hpp"
 
 namespace partreg::app {
 
@@ -23,6 +24,9 @@ void add_registration_flags(CLI::App* command, core::RegistrationSettings& setti
 /// Adds `--NAME` for every training option except those in `skip`, as add_registration_flags does.
 void add_training_flags(CLI::App* command, core::TrainingSettings& settings,
                         const std::set<std::string>& skip = {});
+
+/// Adds `--NAME` for every scene option (the cut of a depth image or scene cloud, scene_options.hpp).
+void add_scene_flags(CLI::App* command, scene::SceneSettings& settings, const std::set<std::string>& skip = {});
 
 /// Adds `--threads N` (0 = all cores): the command's thread budget (core/parallel.hpp).
 void add_threads_flag(CLI::App* command, int& threads);
