@@ -7,7 +7,7 @@ packages=(
   libpcl-dev libassimp-dev libvtk9-dev
   libcli11-dev libspdlog-dev nlohmann-json3-dev
   libgtest-dev libgmock-dev libbenchmark-dev
-  libembree-dev libtbb-dev libcairo2-dev libstb-dev
+  libembree-dev libtbb-dev libcairo2-dev libstb-dev libpng-dev
   libosmesa6-dev libglfw3-dev libimgui-dev python3-glad xvfb xauth
   clang-14 libclang-rt-14-dev
   parallel slurmctld slurmd slurm-client munge
