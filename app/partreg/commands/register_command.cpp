@@ -1,5 +1,6 @@
 // `partreg register MODEL OBSERVED`: deform a category model onto an observed cloud or mesh.
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <filesystem>
 #include <iostream>
@@ -23,13 +24,15 @@
 #include "partreg/io/mesh_io.hpp"
 #include "partreg/io/model_file.hpp"
 #include "partreg/io/output_format.hpp"
+#include "partreg/io/result_file.hpp"
+#include "partreg/io/warm_start_file.hpp"
 
 namespace partreg::app {
 namespace {
 
 struct RegisterOptions {
   std::string model_path, observed_path, json_path, points_out, mesh_out;
-  std::string frames_path, frames_out, truth_path;
+  std::string frames_path, frames_out, truth_path, init;
   std::size_t mesh_samples = 3000;
   int threads = 0;
   core::RegistrationSettings settings;
@@ -139,7 +142,27 @@ void check_register_outputs(const RegisterOptions& options) {
   io::check_output(options.json_path, io::OutputKind::json, "--json");
 }
 
+using Clock = std::chrono::steady_clock;
+
+double seconds_since(Clock::time_point start) {
+  return std::chrono::duration<double>(Clock::now() - start).count();
+}
+
+// The registration, from --init's warm start when one is given.
+core::RegistrationResult register_with_start(const core::CategoryModel& model, const core::Points& observed,
+                                             const RegisterOptions& options,
+                                             const std::optional<core::WarmStart>& start,
+                                             const core::ProgressListener& listener) {
+  if (!start) return core::register_observation(model, observed, options.settings, listener);
+  const core::RegistrationResult result =
+      core::register_observation(model, observed, options.settings, *start, listener);
+  std::cerr << "start: " << core::enum_name(result.start) << " (warm score " << result.warm_score
+            << ", warm-limit " << options.settings.initialisation.warm_limit << ")\n";
+  return result;
+}
+
 void run_register(const RegisterOptions& options) {
+  const Clock::time_point started = Clock::now();
   if (options.frames_out.empty() != options.frames_path.empty())
     throw UsageError("--frames and --frames-out go together");
   check_register_outputs(options);
@@ -147,11 +170,14 @@ void run_register(const RegisterOptions& options) {
   // Frames are read before the work, so bad frames are refused before anything runs.
   const std::vector<core::Frame> frames =
       options.frames_path.empty() ? std::vector<core::Frame>{} : io::read_frames_file(options.frames_path);
+  const std::optional<core::WarmStart> start =
+      options.init.empty() ? std::nullopt : std::optional(io::read_warm_start(options.init));
   const core::CategoryModel model = io::read_model(options.model_path);
   const core::Points observed = read_points_logged(options.observed_path, options.mesh_samples, 1);
+  const double read_seconds = seconds_since(started);
   ProgressDisplay progress({"spaces fitted", /*lines_are_detail=*/true, /*log_every_percent=*/0});
   const core::RegistrationResult result =
-      core::register_observation(model, observed, options.settings, progress.listener());
+      register_with_start(model, observed, options, start, progress.listener());
   progress.finish();
   for (const core::SpaceFit& fit : result.fits) {
     std::cerr << "space " << fit.space << ": " << fit.iterations << " steps ("
@@ -190,7 +216,10 @@ void run_register(const RegisterOptions& options) {
     report["mesh_stretch"] = stretch;
   }
   if (!options.truth_path.empty()) report["truth"] = truth_errors(model, observed, result, options);
+  const Clock::time_point transfer_started = Clock::now();
   write_outputs(model, result, frames, options);
+  io::add_stage_seconds(report, "read", read_seconds, seconds_since(started));
+  io::add_stage_seconds(report, "transfer", seconds_since(transfer_started), seconds_since(started));
   write_json_or_stdout(report, options.json_path);
 }
 
@@ -211,6 +240,10 @@ void add_register_command(CLI::App& app) {
   command->add_option("--frames-out", o->frames_out, "where the transferred frames go");
   add_registration_flags(command, o->settings);
   add_threads_flag(command, o->threads);
+  command->add_option("--init", o->init,
+                      "start at this pose instead of searching: a result JSON of an earlier registration (its "
+                      "pose and latent), a JSON 4x4 T_observed_canonical, or 16 numbers (rows); the search "
+                      "runs only when the fit from it scores above --warm-limit");
   command->add_option(
       "--truth", o->truth_path,
       "ground-truth instance (cloud or mesh, or a folder of part meshes named as the model's "
