@@ -174,6 +174,7 @@ class RegistrationResult:
     mixture: MixtureFinish
     seconds: float
     warm_score: float
+    pose_score: float
     @property
     def variant(self) -> str: ...
     @property

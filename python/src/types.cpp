@@ -272,6 +272,9 @@ void bind_registration_result(py::module_& m) {
                              "how the pose was found: 'searched', 'warm' (the warm start held) or 'warm_lost'")
       .def_readonly("warm_score", &core::RegistrationResult::warm_score,
                     "the warm start's fit's symmetric selection score (normalised length; 0 without one)")
+      .def_readonly("pose_score", &core::RegistrationResult::pose_score,
+                    "the holistic fit's symmetric selection score (normalised length): a warm start from this "
+                    "result is held to it")
       .def_property_readonly(
           "stage_seconds",
           [](const core::RegistrationResult& s) {

@@ -99,6 +99,8 @@ TEST(Tracking, AWarmStartFarOffGivesWayToTheSearch) {
   // The right warm start holds, and costs no search.
   const core::RegistrationResult right =
       core::register_observation(held_out_mug().model, frame.observed, settings, core::warm_start_of(cold));
+  std::cerr << "the right warm start: " << core::enum_name(right.start) << " at score " << right.warm_score
+            << "\n";
   EXPECT_EQ(right.start, core::StartOutcome::warm);
   EXPECT_EQ(right.fits.front().hypotheses, 1);
 }

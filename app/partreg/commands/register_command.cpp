@@ -202,6 +202,7 @@ void run_register(const RegisterOptions& options) {
               << "fit ended in a Gaussian mixture, sigma " << result.mixture.sigma << "\n";
   nlohmann::json report =
       io::result_json(result, options.settings, {options.model_path, options.observed_path});
+  const Clock::time_point figures_started = Clock::now();
   if (result.variant != core::Variant::holistic) {
     // Whether the parts stay together: neighbouring parts' positions of the same boundary points.
     const core::SeamGap gap = core::seam_gap(model, result);
@@ -215,10 +216,12 @@ void run_register(const RegisterOptions& options) {
     std::cerr << "mesh stretch: largest edge " << stretch << "x its canonical length\n";
     report["mesh_stretch"] = stretch;
   }
+  const double figures_seconds = seconds_since(figures_started);
   if (!options.truth_path.empty()) report["truth"] = truth_errors(model, observed, result, options);
   const Clock::time_point transfer_started = Clock::now();
   write_outputs(model, result, frames, options);
   io::add_stage_seconds(report, "read", read_seconds, seconds_since(started));
+  io::add_stage_seconds(report, "figures", figures_seconds, seconds_since(started));
   io::add_stage_seconds(report, "transfer", seconds_since(transfer_started), seconds_since(started));
   write_json_or_stdout(report, options.json_path);
 }

@@ -256,8 +256,15 @@ Pose normalised_pose(const Eigen::Matrix4d& T, const CategoryModel& model, const
   return pose;
 }
 
+// The symmetric selection score of a space's fit: how a warm start is judged, whatever picks the search's winner.
+double symmetric_score(const ShapeSpace& space, const detail::ViewSurface& surface, const Observation& observation,
+                       const SpaceSolution& fit, RegistrationSettings settings) {
+  settings.initialisation.score = SelectionScore::symmetric;
+  return detail::selection_score(space, surface, observation, fit, settings);
+}
+
 // The holistic space's pose and latent: the search over `poses`, or with a warm start its single fit, which
-// stands while its symmetric selection score stays below warm_limit.
+// stands while its symmetric score stays below warm_limit or near the score of the frame it came from.
 detail::SearchOutcome holistic_search(const CategoryModel& model, const detail::ViewSurface& surface,
                                       const Observation& observation, const std::vector<Pose>& poses,
                                       const RegistrationSettings& settings, const WarmStart* warm,
@@ -273,14 +280,19 @@ detail::SearchOutcome holistic_search(const CategoryModel& model, const detail::
     detail::SearchOutcome fit = detail::search_poses(holistic, surface, observation, {start},
                                                      warm->latent.size() ? warm->latent : mean, settings,
                                                      /*whole_object=*/true);
-    RegistrationSettings symmetric = settings;
-    symmetric.initialisation.score = SelectionScore::symmetric;
-    result.warm_score = detail::selection_score(holistic, surface, observation, fit.best, symmetric);
-    result.start = result.warm_score < settings.initialisation.warm_limit ? StartOutcome::warm
-                                                                           : StartOutcome::warm_lost;
-    if (result.start == StartOutcome::warm) return fit;
+    result.warm_score = symmetric_score(holistic, surface, observation, fit.best, settings);
+    const bool held = result.warm_score < settings.initialisation.warm_limit ||
+                      (warm->score > 0.0 && result.warm_score <= kWarmScoreGrowth * warm->score);
+    result.start = held ? StartOutcome::warm : StartOutcome::warm_lost;
+    if (held) {
+      result.pose_score = result.warm_score;
+      return fit;
+    }
   }
-  return detail::search_poses(holistic, surface, observation, poses, mean, settings, /*whole_object=*/true);
+  detail::SearchOutcome search =
+      detail::search_poses(holistic, surface, observation, poses, mean, settings, /*whole_object=*/true);
+  result.pose_score = symmetric_score(holistic, surface, observation, search.best, settings);
+  return search;
 }
 
 }  // namespace
@@ -449,6 +461,7 @@ WarmStart warm_start_of(const RegistrationResult& result) {
   WarmStart start;
   start.T_observed_canonical = result.fits.front().T_observed_canonical;
   if (result.variant != Variant::partwise) start.latent = result.fits.front().latent;
+  start.score = result.pose_score;
   return start;
 }
 

@@ -99,7 +99,10 @@ nlohmann::json result_json(const core::RegistrationResult& result, const core::R
             {"strays", result.fit.strays}}},
           {"mixture", mixture_json(result.mixture)},
           {"refinement", refinement_json(result.refinement, settings.refinement)},
-          {"start", {{"outcome", core::enum_name(result.start)}, {"warm_score", result.warm_score}}},
+          {"start",
+           {{"outcome", core::enum_name(result.start)},
+            {"warm_score", result.warm_score},
+            {"pose_score", result.pose_score}}},
           {"stage_seconds", stage_seconds_json(result.stages, result.seconds)},
           {"seconds", result.seconds}};
 }

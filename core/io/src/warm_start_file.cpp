@@ -34,6 +34,8 @@ core::WarmStart from_result(const nlohmann::json& result) {
   const nlohmann::json& first = spaces.at(0);
   core::WarmStart start;
   start.T_observed_canonical = matrix_of(first.at("T_observed_canonical"));
+  if (result.contains("start") && result.at("start").contains("pose_score"))
+    start.score = result.at("start").at("pose_score").get<double>();
   if (result.value("variant", "") != "partwise" && first.contains("latent")) {
     const auto latent = first.at("latent").get<std::vector<double>>();
     start.latent = Eigen::Map<const Eigen::VectorXd>(latent.data(), static_cast<Eigen::Index>(latent.size()));

@@ -84,7 +84,14 @@ struct WarmStart {
   /// Canonical data frame -> observed frame; a uniform scale in it is kept as the fit's starting scale.
   Eigen::Matrix4d T_observed_canonical = Eigen::Matrix4d::Identity();
   Eigen::VectorXd latent;  ///< the holistic space's latent; empty = the mean shape
+  /// The pose score of the registration it comes from (RegistrationResult::pose_score; 0 = unknown): a warm
+  /// fit that scores no worse than kWarmScoreGrowth times it holds whatever warm_limit says.
+  double score = 0.0;
 };
+
+/// How much worse than the frame before a warm fit may score and still hold: on a held-out mug's partial view
+/// the right start read 0.023 and a start half a turn off 0.029 after the same local fit (docs/speed.md).
+inline constexpr double kWarmScoreGrowth = 1.15;
 
 /// How the pose was found.
 enum class StartOutcome {
@@ -126,6 +133,9 @@ struct RegistrationResult {
   StartOutcome start = StartOutcome::searched;
   /// The warm start's fit's symmetric selection score (normalised length; 0 without a warm start).
   double warm_score = 0.0;
+  /// The holistic fit's symmetric selection score (normalised length; 0 for partwise): what a warm start from
+  /// this result is held to (WarmStart::score).
+  double pose_score = 0.0;
   StageSeconds stages;  ///< where `seconds` went
   double seconds = 0.0;
 };
@@ -150,7 +160,7 @@ RegistrationResult register_observation(const CategoryModel& model, const Points
                                         const ProgressListener& progress = {});
 
 /// Where a registration that follows `result` starts: its first fit's pose (the holistic space's where it
-/// ran) and, unless the result is partwise, that fit's latent.
+/// ran), unless the result is partwise that fit's latent, and its pose score.
 WarmStart warm_start_of(const RegistrationResult& result);
 
 /// Registers the frames of a stream in order: the first from `start` (or the search, without one), every

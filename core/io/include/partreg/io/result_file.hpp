@@ -37,7 +37,7 @@ struct ResultSource {
 nlohmann::json result_json(const core::RegistrationResult& result, const core::RegistrationSettings& settings,
                            const ResultSource& source);
 
-/// Adds a front end's own stage (`read`, `transfer`) to a result JSON's `stage_seconds` and sets its
+/// Adds a front end's own stage (`read`, `figures`, `transfer`) to a result JSON's `stage_seconds` and sets its
 /// total to `total` (wall seconds of the whole request), so that `other` holds what no stage accounts for.
 void add_stage_seconds(nlohmann::json& report, const std::string& stage, double seconds, double total);
 
