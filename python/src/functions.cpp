@@ -133,6 +133,15 @@ void bind_training(py::module_& m) {
         "units), default.");
 }
 
+// register()'s `init`: None, an earlier RegistrationResult (its first fit's pose and latent) or a (4, 4)
+// T_observed_canonical.
+std::optional<core::WarmStart> warm_start(py::handle init) {
+  if (init.is_none()) return std::nullopt;
+  if (py::isinstance<core::RegistrationResult>(init))
+    return core::warm_start_of(init.cast<const core::RegistrationResult&>());
+  return core::WarmStart{to_matrix(init, 4, 4, "init"), {}};
+}
+
 void bind_registration(py::module_& m) {
   // The docstring lists every keyword from the table, so help(partreg.register) cannot go out of date.
   const std::string register_doc =
@@ -143,21 +152,52 @@ void bind_registration(py::module_& m) {
       "fewer "
       "than 10 finite points, NaN points or an observation wildly out of scale; UsageError for a bad setting "
       "or "
-      "a part-based variant on a model without parts. threads: as --threads, all counted, 0 = all cores."
+      "a part-based variant on a model without parts. threads: as --threads, all counted, 0 = all cores. "
+      "init: a warm start, an earlier RegistrationResult (its pose and latent) or a (4, 4) "
+      "T_observed_canonical; the pose search then runs only when the fit from it scores above warm_limit."
       "\n\nKeywords (default, help):" +
       registration_keywords_doc();
   m.def(
       "register",
-      [](const ModelPtr& model, py::handle points, int threads, const py::kwargs& keywords) {
+      [](const ModelPtr& model, py::handle points, int threads, py::handle init, const py::kwargs& keywords) {
         const core::RegistrationSettings settings = registration_settings(keywords);
         const core::Points observed = to_points(points, "points");
+        const std::optional<core::WarmStart> start = warm_start(init);
         py::gil_scoped_release release;
         const core::ThreadBudget budget(thread_count(threads));
         return std::make_shared<core::RegistrationResult>(
-            core::register_observation(*model, observed, settings));
+            start ? core::register_observation(*model, observed, settings, *start)
+                  : core::register_observation(*model, observed, settings));
       },
       py::arg("model").none(false), py::arg("points"), py::kw_only(), py::arg("threads") = 0,
-      register_doc.c_str());  // pybind11 copies the text
+      py::arg("init") = py::none(), register_doc.c_str());  // pybind11 copies the text
+  m.def(
+      "track",
+      [](const ModelPtr& model, const py::sequence& frames, int threads, py::handle init,
+         const py::kwargs& keywords) {
+        const core::RegistrationSettings settings = registration_settings(keywords);
+        std::vector<core::Points> clouds;
+        for (std::size_t i = 0; i < frames.size(); ++i)
+          clouds.push_back(to_points(frames[i], "frames[" + std::to_string(i) + "]"));
+        const std::optional<core::WarmStart> start = warm_start(init);
+        std::vector<core::RegistrationResult> results;
+        {
+          py::gil_scoped_release release;
+          const core::ThreadBudget budget(thread_count(threads));
+          results = core::register_sequence(*model, clouds, settings, start);
+        }
+        std::vector<ResultPtr> out;
+        for (core::RegistrationResult& result : results)
+          out.push_back(std::make_shared<core::RegistrationResult>(std::move(result)));
+        return out;
+      },
+      py::arg("model").none(false), py::arg("frames"), py::kw_only(), py::arg("threads") = 0,
+      py::arg("init") = py::none(),
+      "Registers a sequence of observations (a stream's frames, each (N, 3) float64) in order: the first from "
+      "init (or the pose search), every later one warm from the frame before, the search running only where "
+      "the warm fit scores above warm_limit. Returns one RegistrationResult per frame: its seconds, "
+      "stage_seconds, start ('searched', 'warm' or 'warm_lost') and warm_score say what each frame cost and "
+      "whether the warm start held. Keywords as register().");
   m.def("registration_defaults", &registration_defaults,
         "Every registration keyword of register() with its default (the command line's).");
   m.def("registration_options", &registration_options,

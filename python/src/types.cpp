@@ -269,6 +269,23 @@ void bind_registration_result(py::module_& m) {
       .def_readonly("mixture", &core::RegistrationResult::mixture,
                     "whether the space fits ended in a Gaussian mixture, and on what noise")
       .def_readonly("seconds", &core::RegistrationResult::seconds)
+      .def_property_readonly("start", [](const core::RegistrationResult& s) { return core::enum_name(s.start); },
+                             "how the pose was found: 'searched', 'warm' (the warm start held) or 'warm_lost'")
+      .def_readonly("warm_score", &core::RegistrationResult::warm_score,
+                    "the warm start's fit's symmetric selection score (normalised length; 0 without one)")
+      .def_readonly("pose_score", &core::RegistrationResult::pose_score,
+                    "the holistic fit's symmetric selection score (normalised length): a warm start from this "
+                    "result is held to it")
+      .def_property_readonly(
+          "stage_seconds",
+          [](const core::RegistrationResult& s) {
+            const core::StageSeconds& t = s.stages;
+            return std::map<std::string, double>{{"prepare", t.prepare},       {"search", t.search},
+                                                 {"fits", t.fits},             {"refinement", t.refinement},
+                                                 {"statistics", t.statistics}, {"other", s.seconds - t.sum()},
+                                                 {"total", s.seconds}};
+          },
+          "wall seconds of each stage, summing to total")
       .def("space_fit", [](const core::RegistrationResult& s, const std::string& name) {
              for (const core::SpaceFit& fit : s.fits)
                if (fit.space == name) return fit;

@@ -1,5 +1,6 @@
 // `partreg register MODEL OBSERVED`: deform a category model onto an observed cloud or mesh.
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <filesystem>
 #include <iostream>
@@ -26,13 +27,15 @@
 #include "partreg/io/model_file.hpp"
 #include "partreg/io/output_format.hpp"
 #include "partreg/io/registration_outputs.hpp"
+#include "partreg/io/result_file.hpp"
+#include "partreg/io/warm_start_file.hpp"
 
 namespace partreg::app {
 namespace {
 
 struct RegisterOptions {
   std::string model_path, observed_path, json_path, points_out, mesh_out;
-  std::string frames_path, frames_out, truth_path;
+  std::string frames_path, frames_out, truth_path, init;
   std::string grasps_path, grasps_out, gripper_path;
   std::size_t mesh_samples = 3000;
   int threads = 0;
@@ -143,7 +146,27 @@ void check_register_outputs(const RegisterOptions& options) {
   io::check_output(options.grasps_out, io::OutputKind::json, "--grasps-out");
 }
 
+using Clock = std::chrono::steady_clock;
+
+double seconds_since(Clock::time_point start) {
+  return std::chrono::duration<double>(Clock::now() - start).count();
+}
+
+// The registration, from --init's warm start when one is given.
+core::RegistrationResult register_with_start(const core::CategoryModel& model, const core::Points& observed,
+                                             const RegisterOptions& options,
+                                             const std::optional<core::WarmStart>& start,
+                                             const core::ProgressListener& listener) {
+  if (!start) return core::register_observation(model, observed, options.settings, listener);
+  const core::RegistrationResult result =
+      core::register_observation(model, observed, options.settings, *start, listener);
+  std::cerr << "start: " << core::enum_name(result.start) << " (warm score " << result.warm_score
+            << ", warm-limit " << options.settings.initialisation.warm_limit << ")\n";
+  return result;
+}
+
 void run_register(const RegisterOptions& options) {
+  const Clock::time_point started = Clock::now();
   if (options.frames_out.empty() != options.frames_path.empty())
     throw UsageError("--frames and --frames-out go together");
   if (options.grasps_out.empty() != options.grasps_path.empty())
@@ -156,13 +179,18 @@ void run_register(const RegisterOptions& options) {
   const std::optional<GraspRequest> grasps =
       options.grasps_path.empty() ? std::nullopt
                                   : std::optional(read_grasp_request(options.grasps_path, options.gripper_path));
+  const std::optional<core::WarmStart> start =
+      options.init.empty() ? std::nullopt : std::optional(io::read_warm_start(options.init));
   const core::CategoryModel model = io::read_model(options.model_path);
   const Observed seen =
       read_observed(options.observed_path, options.scene_input, options.settings, options.mesh_samples);
+  if (seen.cut && start) throw UsageError("--init starts a plain observation, not a depth image or scene");
   const core::Points& observed = seen.points;
+  const double read_seconds = seconds_since(started);
   ProgressDisplay progress({"spaces fitted", /*lines_are_detail=*/true, /*log_every_percent=*/0});
   const core::RegistrationResult result =
-      register_observed(model, seen, options.settings, options.scene_input, progress.listener());
+      seen.cut ? register_observed(model, seen, options.settings, options.scene_input, progress.listener())
+               : register_with_start(model, observed, options, start, progress.listener());
   progress.finish();
   for (const core::SpaceFit& fit : result.fits) {
     std::cerr << "space " << fit.space << ": " << fit.iterations << " steps ("
@@ -189,6 +217,7 @@ void run_register(const RegisterOptions& options) {
       io::result_json(result, options.settings,
                       {options.model_path, seen.cut ? options.scene_input.source() : options.observed_path});
   if (seen.cut) report["scene"] = cut_json(*seen.cut);
+  const Clock::time_point figures_started = Clock::now();
   if (result.variant != core::Variant::holistic) {
     // Whether the parts stay together: neighbouring parts' positions of the same boundary points.
     const core::SeamGap gap = core::seam_gap(model, result);
@@ -202,9 +231,14 @@ void run_register(const RegisterOptions& options) {
     std::cerr << "mesh stretch: largest edge " << stretch << "x its canonical length\n";
     report["mesh_stretch"] = stretch;
   }
+  const double figures_seconds = seconds_since(figures_started);
   if (!options.truth_path.empty()) report["truth"] = truth_errors(model, observed, result, options);
+  const Clock::time_point transfer_started = Clock::now();
   write_outputs(model, result, observed, frames, options);
   if (grasps) write_carried_grasps(model, result, observed, *grasps, options.grasps_out);
+  io::add_stage_seconds(report, "read", read_seconds, seconds_since(started));
+  io::add_stage_seconds(report, "figures", figures_seconds, seconds_since(started));
+  io::add_stage_seconds(report, "transfer", seconds_since(transfer_started), seconds_since(started));
   write_json_or_stdout(report, options.json_path);
 }
 
@@ -230,6 +264,10 @@ void add_register_command(CLI::App& app) {
   add_registration_flags(command, o->settings);
   add_observation_flags(command, o->scene_input);
   add_threads_flag(command, o->threads);
+  command->add_option("--init", o->init,
+                      "start at this pose instead of searching: a result JSON of an earlier registration (its "
+                      "pose and latent), a JSON 4x4 T_observed_canonical, or 16 numbers (rows); the search "
+                      "runs only when the fit from it scores above --warm-limit");
   command->add_option(
       "--truth", o->truth_path,
       "ground-truth instance (cloud or mesh, or a folder of part meshes named as the model's "

@@ -1,6 +1,7 @@
 #include "pose_search.hpp"
 
 #include <Eigen/Eigenvalues>
+#include <Eigen/Geometry>
 #include <algorithm>
 #include <limits>
 #include <numeric>
@@ -172,6 +173,82 @@ std::vector<Candidate> better_half(std::vector<Candidate> candidates, std::size_
   return kept;
 }
 
+
+// Rigid closest-point steps taken by the cheapest look at a start: enough to turn a start 15 degrees off (half
+// the default spacing of the yaws) onto its basin's pose on the coarse problem.
+constexpr int kLookSteps = 4;
+
+// The cheapest look at a start: its shape (the latent it starts with) moved rigidly by kLookSteps closest-point
+// steps both ways (Umeyama, no scale) over the points the viewpoint sees, on the screening's coarse problem.
+// No Ceres problem is built, so a look costs a small share of a screening step.
+void look(Candidate& candidate, const ShapeSpace& space, const ViewSurface& surface,
+          const Observation& observation, const RegistrationSettings& settings) {
+  const Points shape = space.deformed(candidate.fit.latent);
+  std::vector<int> index;
+  Eigen::VectorXd squared;
+  for (int step = 0; step < kLookSteps; ++step) {
+    const Points posed = candidate.fit.pose.apply(shape);
+    const std::vector<bool> visible = visible_rows(posed, surface, candidate.fit.pose, observation.viewpoint);
+    std::vector<int> seen;
+    for (std::size_t m = 0; m < visible.size(); ++m)
+      if (visible[m]) seen.push_back(static_cast<int>(m));
+    if (seen.size() < 3) return;
+    const Points seen_posed = select_rows(posed, seen);
+    // Pairs (shape point, observed point): each seen shape point to its closest observed point, and each
+    // observed point to its closest seen shape point.
+    observation.tree->nearest_all(seen_posed, index, squared);
+    const auto n = static_cast<Eigen::Index>(seen.size());
+    Eigen::Matrix3Xd from(3, n + observation.points.rows()), to(3, n + observation.points.rows());
+    for (Eigen::Index i = 0; i < n; ++i) {
+      from.col(i) = posed.row(seen[static_cast<std::size_t>(i)]).transpose();
+      to.col(i) = observation.points.row(index[static_cast<std::size_t>(i)]).transpose();
+    }
+    KdTree(seen_posed).nearest_all(observation.points, index, squared);
+    for (Eigen::Index j = 0; j < observation.points.rows(); ++j) {
+      from.col(n + j) = seen_posed.row(index[static_cast<std::size_t>(j)]).transpose();
+      to.col(n + j) = observation.points.row(j).transpose();
+    }
+    const Eigen::Matrix4d T = Eigen::umeyama(from, to, /*with_scaling=*/false);
+    const Eigen::Matrix3d R = T.topLeftCorner<3, 3>();
+    Pose& pose = candidate.fit.pose;
+    pose.rotation = Eigen::Quaterniond(R * pose.rotation.toRotationMatrix()).normalized();
+    pose.translation = R * pose.translation + T.topRightCorner<3, 1>();
+  }
+  RegistrationSettings symmetric = settings;
+  symmetric.initialisation.score = SelectionScore::symmetric;
+  candidate.score = selection_score(space, surface, observation, candidate.fit, symmetric);
+}
+
+// Two looks that ended within this of each other are one hypothesis (radians of rotation, normalised length
+// of translation): starts in one basin, or a symmetric object's turns that fit alike.
+constexpr double kSameRotation = 0.15, kSameTranslation = 0.02;
+
+// The starts worth screening: every start looked at (in parallel), the duplicates merged, the best `keep` by
+// the look's score, best first.
+std::vector<Candidate> survivors(std::vector<Candidate> candidates, std::size_t keep, const ShapeSpace& space,
+                                 const ViewSurface& surface, const Observation& observation,
+                                 const RegistrationSettings& settings) {
+  parallel_for(
+      static_cast<Eigen::Index>(candidates.size()),
+      [&](Eigen::Index begin, Eigen::Index end) {
+        for (Eigen::Index i = begin; i < end; ++i)
+          look(candidates[static_cast<std::size_t>(i)], space, surface, observation, settings);
+      },
+      0, 1);
+  std::stable_sort(candidates.begin(), candidates.end(),
+                   [](const Candidate& a, const Candidate& b) { return a.score < b.score; });
+  std::vector<Candidate> kept;
+  for (Candidate& candidate : candidates) {
+    const bool duplicate = std::any_of(kept.begin(), kept.end(), [&](const Candidate& other) {
+      return candidate.fit.pose.rotation.angularDistance(other.fit.pose.rotation) < kSameRotation &&
+             (candidate.fit.pose.translation - other.fit.pose.translation).norm() < kSameTranslation;
+    });
+    if (!duplicate) kept.push_back(std::move(candidate));
+    if (kept.size() == keep) break;
+  }
+  return kept;
+}
+
 }  // namespace
 
 double search_prior_weight(const ShapeSpace& space, const Observation& observation, const SpaceSolution& fit,
@@ -248,6 +325,9 @@ SearchOutcome search_poses(const ShapeSpace& space, const ViewSurface& surface,
   const ShapeSpace& screen_space = coarse ? coarse->space : space;
   const ViewSurface& screen_surface = coarse ? coarse->surface : surface;
   const Observation& screen_observation = coarse ? coarse->observation : observation;
+  if (init.survivors > 0 && candidates.size() > static_cast<std::size_t>(init.survivors))
+    candidates = survivors(std::move(candidates), static_cast<std::size_t>(init.survivors), screen_space,
+                           screen_surface, screen_observation, settings);
   int steps = std::max(1, init.screening_iterations);
   while (candidates.size() > finalists) {
     parallel_for(

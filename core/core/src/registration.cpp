@@ -2,6 +2,7 @@
 
 #include <Eigen/Eigenvalues>
 #include <chrono>
+#include <cmath>
 #include <numeric>
 #include <optional>
 
@@ -52,8 +53,37 @@ std::vector<int> matched_rows(const Points& points, const SamplingSettings& samp
   return rows;
 }
 
+// A cloud of more than this many times SamplingSettings::observed_points is thinned to at most that many before
+// anything is built over it: the strays' neighbour queries and the farthest points cost O(N log N) and more,
+// and on a depth camera's million points they were 90% of the registration. Four candidates per matched point
+// leave the farthest points a choice at a third of their spacing.
+constexpr double kCandidatesPerMatched = 4.0;
+
+// The rows of `points` registration chooses its matched points from: every row of a cloud no larger than
+// observed_points, else one voxel pass at voxel_size (data units here) over all of it, the only pass over every
+// point, then passes at growing voxels over the representatives until no more than kCandidatesPerMatched x
+// observed_points remain. `fine`: the first pass's representatives, where it ran.
+std::vector<int> candidate_rows(const Points& points, const SamplingSettings& sampling, double voxel_size,
+                                std::optional<std::vector<int>>& fine) {
+  std::vector<int> rows(static_cast<std::size_t>(points.rows()));
+  std::iota(rows.begin(), rows.end(), 0);
+  if (points.rows() <= sampling.observed_points || !(voxel_size > 0.0)) return rows;
+  rows = voxel_representatives(points, voxel_size);
+  fine = rows;
+  const double most = kCandidatesPerMatched * sampling.observed_points;
+  while (static_cast<double>(rows.size()) > most) {
+    // A surface's voxels fall as the square of their size: grow it by the root of the excess, and a little.
+    voxel_size *= 1.05 * std::sqrt(static_cast<double>(rows.size()) / most);
+    std::vector<int> coarser = voxel_representatives(select_rows(points, rows), voxel_size);
+    for (int& row : coarser) row = rows[static_cast<std::size_t>(row)];
+    rows = std::move(coarser);
+  }
+  return rows;
+}
+
 detail::Observation prepare_observation(const CategoryModel& model, const Points& observed,
-                                        const RegistrationSettings& settings, Eigen::Vector3d& centroid) {
+                                        const RegistrationSettings& settings, Eigen::Vector3d& centroid,
+                                        std::optional<Points>& statistics_points) {
   if (observed.rows() < 10)
     throw InputError("the observed cloud has " + std::to_string(observed.rows()) +
                      " points; at least 10 are needed");
@@ -63,14 +93,17 @@ detail::Observation prepare_observation(const CategoryModel& model, const Points
     throw InputError("the observed cloud is " + std::to_string(ratio) + " times the size of the '" +
                      model.category + "' model: check its units");
   centroid = observed.colwise().mean().transpose();
-  Observation observation;
-  const Points normalised = (observed.rowwise() - centroid.transpose()) / model.normalization.scale;
-  // A voxel pre-pass when there are more points than a step matches (a depth camera's million points cost
-  // O(N)), then the matched rows; every point is kept as it is when few enough.
+  // Thinned first, in data units: only the candidates are ever normalised, searched or sampled.
+  std::optional<std::vector<int>> fine;
+  const std::vector<int> rows = candidate_rows(
+      observed, settings.sampling, settings.sampling.voxel_size * model.normalization.scale, fine);
+  // The fit statistics of a thinned cloud read its fine representatives: a tree over every point of a million
+  // cost more than the fit.
+  if (fine && static_cast<double>(observed.rows()) > kCandidatesPerMatched * settings.sampling.observed_points)
+    statistics_points = select_rows(observed, *fine);
   const Points candidates =
-      normalised.rows() > settings.sampling.observed_points && settings.sampling.voxel_size > 0.0
-          ? select_rows(normalised, voxel_representatives(normalised, settings.sampling.voxel_size))
-          : normalised;
+      (select_rows(observed, rows).rowwise() - centroid.transpose()) / model.normalization.scale;
+  Observation observation;
   observation.points = select_rows(candidates, matched_rows(candidates, settings.sampling, observation.alone));
   observation.tree = std::make_unique<KdTree>(observation.points);
   if (settings.viewpoint)
@@ -190,6 +223,78 @@ FitStatistics fit_statistics(const Points& deformed, const Points& observed, dou
   return fit;
 }
 
+
+// Wall seconds since the last lap (or since construction): each stage's time, read once at its end.
+class StageClock {
+ public:
+  double lap() {
+    const auto now = std::chrono::steady_clock::now();
+    const double seconds = std::chrono::duration<double>(now - last_).count();
+    last_ = now;
+    return seconds;
+  }
+
+ private:
+  std::chrono::steady_clock::time_point last_ = std::chrono::steady_clock::now();
+};
+
+// The warm start's pose in the normalised frame the fits work in: to_data_frame read backwards. Its scale is
+// kept only where the fit estimates one.
+Pose normalised_pose(const Eigen::Matrix4d& T, const CategoryModel& model, const Eigen::Vector3d& centroid,
+                     bool keep_scale) {
+  const Eigen::Matrix3d sR = T.topLeftCorner<3, 3>();
+  const double scale = std::cbrt(sR.determinant());
+  const Eigen::Matrix3d R = sR / scale;
+  if (!T.allFinite() || !(scale > 0.0) || !(R.transpose() * R).isIdentity(1e-3) ||
+      !T.row(3).isApprox(Eigen::RowVector4d(0, 0, 0, 1)))
+    throw UsageError("the initial pose is not a rotation with a uniform scale and a translation");
+  Pose pose;
+  pose.rotation = Eigen::Quaterniond(R).normalized();
+  pose.scale = keep_scale ? scale : 1.0;
+  pose.translation =
+      (T.topRightCorner<3, 1>() - centroid + sR * model.normalization.centre) / model.normalization.scale;
+  return pose;
+}
+
+// The symmetric selection score of a space's fit: how a warm start is judged, whatever picks the search's winner.
+double symmetric_score(const ShapeSpace& space, const detail::ViewSurface& surface, const Observation& observation,
+                       const SpaceSolution& fit, RegistrationSettings settings) {
+  settings.initialisation.score = SelectionScore::symmetric;
+  return detail::selection_score(space, surface, observation, fit, settings);
+}
+
+// The holistic space's pose and latent: the search over `poses`, or with a warm start its single fit, which
+// stands while its symmetric score stays below warm_limit or near the score of the frame it came from.
+detail::SearchOutcome holistic_search(const CategoryModel& model, const detail::ViewSurface& surface,
+                                      const Observation& observation, const std::vector<Pose>& poses,
+                                      const RegistrationSettings& settings, const WarmStart* warm,
+                                      const Eigen::Vector3d& centroid, RegistrationResult& result) {
+  const ShapeSpace& holistic = model.holistic();
+  const Eigen::VectorXd mean = Eigen::VectorXd::Zero(holistic.dimensions());
+  if (warm) {
+    if (warm->latent.size() != 0 && warm->latent.size() != holistic.dimensions())
+      throw UsageError("the initial latent has " + std::to_string(warm->latent.size()) + " values; the '" +
+                       holistic.name + "' space has " + std::to_string(holistic.dimensions()));
+    const Pose start = normalised_pose(warm->T_observed_canonical, model, centroid,
+                                       settings.objective.estimate_scale);
+    detail::SearchOutcome fit = detail::search_poses(holistic, surface, observation, {start},
+                                                     warm->latent.size() ? warm->latent : mean, settings,
+                                                     /*whole_object=*/true);
+    result.warm_score = symmetric_score(holistic, surface, observation, fit.best, settings);
+    const bool held = result.warm_score < settings.initialisation.warm_limit ||
+                      (warm->score > 0.0 && result.warm_score <= kWarmScoreGrowth * warm->score);
+    result.start = held ? StartOutcome::warm : StartOutcome::warm_lost;
+    if (held) {
+      result.pose_score = result.warm_score;
+      return fit;
+    }
+  }
+  detail::SearchOutcome search =
+      detail::search_poses(holistic, surface, observation, poses, mean, settings, /*whole_object=*/true);
+  result.pose_score = symmetric_score(holistic, surface, observation, search.best, settings);
+  return search;
+}
+
 }  // namespace
 
 RegistrationSettings with_model_defaults(RegistrationSettings settings, const CategoryModel& model) {
@@ -199,26 +304,30 @@ RegistrationSettings with_model_defaults(RegistrationSettings settings, const Ca
   return settings;
 }
 
-RegistrationResult register_observation(const CategoryModel& model, const Points& observed,
-                                        const RegistrationSettings& request,
-                                        const ProgressListener& progress) {
-  const auto start = std::chrono::steady_clock::now();
+namespace {
+
+RegistrationResult register_from(const CategoryModel& model, const Points& observed,
+                                 const RegistrationSettings& request, const WarmStart* warm,
+                                 const ProgressListener& progress) {
+  StageClock clock;
   validate(request);
   const RegistrationSettings settings = with_model_defaults(request, model);
   if (settings.variant != Variant::holistic && !model.has_parts())
     throw UsageError("model '" + model.category + "' has no parts: use the holistic variant");
   Eigen::Vector3d centroid;
-  const Observation observation = prepare_observation(model, observed, settings, centroid);
+  std::optional<Points> statistics_points;  // a thinned cloud's fine voxel representatives
+  const Observation observation = prepare_observation(model, observed, settings, centroid, statistics_points);
   const detail::ViewSurface surface = settings.viewpoint ? detail::view_surface(model.canonical) : detail::ViewSurface();
   const ShapeSpace& holistic = model.holistic();
   // Every space starts with the whole object's centroid on the observation's: a part keeps its place.
   const Eigen::Vector3d centre =
       holistic.deformed(Eigen::VectorXd::Zero(holistic.dimensions())).colwise().mean().transpose();
   const std::vector<Pose> poses = detail::starting_poses(centre, model.canonical, observation, settings);
+  RegistrationResult result;
+  result.stages.prepare = clock.lap();
   const std::size_t parts_fitted = settings.variant == Variant::holistic ? 0 : model.spaces.size() - 1;
   ProgressCounter fitted(parts_fitted + (settings.variant == Variant::partwise ? 0 : 1), progress);
 
-  RegistrationResult result;
   result.variant = settings.variant;
   Points deformed_normalised(model.canonical.rows(), 3);
   SpaceSolution whole;
@@ -227,9 +336,9 @@ RegistrationResult register_observation(const CategoryModel& model, const Points
   // The part fits after a mixture weigh the prior by its variance (detail::noisy_prior_weight).
   RegistrationSettings fit_settings = settings;
   if (settings.variant != Variant::partwise) {
-    detail::SearchOutcome search = detail::search_poses(
-        holistic, surface, observation, poses, Eigen::VectorXd::Zero(holistic.dimensions()), settings,
-        /*whole_object=*/true);
+    detail::SearchOutcome search =
+        holistic_search(model, surface, observation, poses, settings, warm, centroid, result);
+    result.stages.search = clock.lap();
     deformed_normalised = search.best.pose.apply(holistic.deformed(search.best.latent));
     mixture = mixture_targets(observation, deformed_normalised, settings, result.mixture);
     if (mixture) {
@@ -261,8 +370,12 @@ RegistrationResult register_observation(const CategoryModel& model, const Points
       // partwise keeps the paper's single start in the category frame.
       part_settings.initialisation.restarts = 1;
     }
+    // Partwise from a warm start: every part starts at its pose, searching nothing.
     const std::vector<Pose> part_poses =
-        detail::starting_poses(centre, model.canonical, observation, part_settings);
+        warm ? std::vector<Pose>{normalised_pose(warm->T_observed_canonical, model, centroid,
+                                                 settings.objective.estimate_scale)}
+             : detail::starting_poses(centre, model.canonical, observation, part_settings);
+    if (warm && settings.variant == Variant::partwise) result.start = StartOutcome::warm;
     // Parts are independent given their initialisation: solve them in parallel, within the thread budget.
     std::vector<detail::SearchOutcome> parts(model.spaces.size() - 1);
     if (settings.variant == Variant::coupled)
@@ -306,6 +419,7 @@ RegistrationResult register_observation(const CategoryModel& model, const Points
         deformed_normalised.row(space.point_indices[i]) = posed.row(static_cast<Eigen::Index>(i));
     }
   }
+  result.stages.fits = clock.lap();
   if (settings.refinement.enabled) {
     const RefinementField field =
         refine_fit(deformed_normalised, without_strays(observation, deformed_normalised), observation.viewpoint,
@@ -313,12 +427,56 @@ RegistrationResult register_observation(const CategoryModel& model, const Points
     deformed_normalised += field.displacement_at(deformed_normalised);
     result.refinement = field.transformed(model.normalization.scale, centroid);
   }
+  result.stages.refinement = clock.lap();
   result.deformed = (deformed_normalised * model.normalization.scale).rowwise() + centroid.transpose();
   result.part = model.canonical_part;
-  result.fit = fit_statistics(result.deformed, observed, model.normalization.scale);
+  result.fit = fit_statistics(result.deformed, statistics_points ? *statistics_points : observed,
+                              model.normalization.scale);
   result.fit.strays = count_strays(observation, deformed_normalised);
-  result.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  result.stages.statistics = clock.lap();
+  result.seconds = result.stages.sum();
   return result;
+}
+
+}  // namespace
+
+RegistrationResult register_observation(const CategoryModel& model, const Points& observed,
+                                        const RegistrationSettings& settings,
+                                        const ProgressListener& progress) {
+  return register_from(model, observed, settings, nullptr, progress);
+}
+
+RegistrationResult register_observation(const CategoryModel& model, const Points& observed,
+                                        const RegistrationSettings& settings, const WarmStart& start,
+                                        const ProgressListener& progress) {
+  return register_from(model, observed, settings, &start, progress);
+}
+
+}  // namespace partreg::core
+
+namespace partreg::core {
+
+WarmStart warm_start_of(const RegistrationResult& result) {
+  if (result.fits.empty()) throw UsageError("the result holds no space fit to start from");
+  WarmStart start;
+  start.T_observed_canonical = result.fits.front().T_observed_canonical;
+  if (result.variant != Variant::partwise) start.latent = result.fits.front().latent;
+  start.score = result.pose_score;
+  return start;
+}
+
+std::vector<RegistrationResult> register_sequence(const CategoryModel& model, const std::vector<Points>& frames,
+                                                  const RegistrationSettings& settings,
+                                                  const std::optional<WarmStart>& start) {
+  std::vector<RegistrationResult> results;
+  results.reserve(frames.size());
+  std::optional<WarmStart> next = start;
+  for (const Points& frame : frames) {
+    results.push_back(next ? register_observation(model, frame, settings, *next)
+                           : register_observation(model, frame, settings));
+    next = warm_start_of(results.back());
+  }
+  return results;
 }
 
 }  // namespace partreg::core

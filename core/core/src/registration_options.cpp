@@ -120,11 +120,20 @@ std::vector<RegistrationOption> make_options() {
           "canonical and observed points the screening rounds match (farthest-point subsets; 0 = all)", 0,
           1000000, [](auto& s) -> auto& { return s.initialisation.screening_points; }),
       Make::whole(
+          "survivors",
+          "pose hypotheses screened after the cheapest look (rigid steps on the screening points; 0 = all)", 0,
+          100000, [](auto& s) -> auto& { return s.initialisation.survivors; }),
+      Make::whole(
           "finalists", "pose hypotheses run to convergence", 1, 10000,
           [](auto& s) -> auto& { return s.initialisation.finalists; }),
       Make::choice<SelectionScore>(
           "score", "what picks the winning pose hypothesis",
           [](auto& s) -> auto& { return s.initialisation.score; }),
+      Make::real(
+          "warm-limit",
+          "a warm start (--init) holds while its fit's symmetric selection score stays below this "
+          "(normalised length); above it the pose search runs",
+          0.0, 1e6, [](auto& s) -> auto& { return s.initialisation.warm_limit; }),
       Make::whole(
           "iterations", "correspondence refreshes per space at most", 1, 10000,
           [](auto& s) -> auto& { return s.convergence.outer_iterations; }),

@@ -6,10 +6,10 @@
 #include <limits>
 #include <queue>
 #include <random>
-#include <unordered_map>
 
 #include "partreg/core/errors.hpp"
 #include "partreg/core/kdtree.hpp"
+#include "partreg/core/parallel.hpp"
 
 namespace partreg::core {
 
@@ -101,6 +101,53 @@ std::vector<int> farthest_point_indices(const Points& points, std::size_t count,
   return chosen;
 }
 
+namespace {
+
+// Voxel key -> voxel number, open addressing with linear probing in a power-of-two table kept at most half full:
+// the standard map's node per voxel made it the slowest part of the pass over a million points.
+class VoxelNumbers {
+ public:
+  explicit VoxelNumbers(std::size_t expected) { rehash(std::max<std::size_t>(64, 2 * expected)); }
+
+  // The number of the voxel `key`; a new voxel gets the next number.
+  int number(std::uint64_t key) {
+    if (2 * (count_ + 1) > keys_.size()) rehash(2 * keys_.size());
+    std::size_t slot = slot_of(key);
+    while (keys_[slot] != kEmpty && keys_[slot] != key) slot = (slot + 1) & mask_;
+    if (keys_[slot] == kEmpty) {
+      keys_[slot] = key;
+      numbers_[slot] = static_cast<int>(count_++);
+    }
+    return numbers_[slot];
+  }
+  std::size_t size() const { return count_; }
+
+ private:
+  static constexpr std::uint64_t kEmpty = ~std::uint64_t{0};  // never a key: keys stay below 9e18
+  std::size_t slot_of(std::uint64_t key) const { return (key * 0x9E3779B97F4A7C15ull >> 17) & mask_; }
+  void rehash(std::size_t wanted) {
+    std::size_t capacity = 64;
+    while (capacity < wanted) capacity *= 2;
+    std::vector<std::uint64_t> keys(capacity, kEmpty);
+    std::vector<int> numbers(capacity, -1);
+    keys.swap(keys_);
+    numbers.swap(numbers_);
+    mask_ = capacity - 1;
+    for (std::size_t i = 0; i < keys.size(); ++i) {
+      if (keys[i] == kEmpty) continue;
+      std::size_t slot = slot_of(keys[i]);
+      while (keys_[slot] != kEmpty) slot = (slot + 1) & mask_;
+      keys_[slot] = keys[i];
+      numbers_[slot] = numbers[i];
+    }
+  }
+  std::vector<std::uint64_t> keys_;
+  std::vector<int> numbers_;
+  std::size_t mask_ = 0, count_ = 0;
+};
+
+}  // namespace
+
 std::vector<int> voxel_representatives(const Points& points, double voxel_size) {
   if (!(voxel_size > 0.0) || !std::isfinite(voxel_size))
     throw UsageError("the voxel size must be positive, got " + std::to_string(voxel_size));
@@ -111,18 +158,23 @@ std::vector<int> voxel_representatives(const Points& points, double voxel_size) 
     for (std::size_t i = 0; i < all.size(); ++i) all[i] = static_cast<int>(i);
     return all;
   }
+  // The keys in parallel (independent per point), then the voxels numbered in the input's order.
+  std::vector<std::uint64_t> keys(static_cast<std::size_t>(points.rows()));
+  parallel_for(points.rows(), [&](Eigen::Index begin, Eigen::Index end) {
+    for (Eigen::Index i = begin; i < end; ++i) {
+      const Eigen::RowVector3d cell = ((points.row(i) - lower) / voxel_size).array().floor();
+      keys[static_cast<std::size_t>(i)] = static_cast<std::uint64_t>(cell[0] + cells[0] * (cell[1] + cells[1] * cell[2]));
+    }
+  }, 0, 1 << 16);
   // First pass: each voxel's centroid; second: the point nearest to it.
-  std::unordered_map<std::uint64_t, int> voxel_of_key;
-  voxel_of_key.reserve(static_cast<std::size_t>(points.rows() / 4 + 1));
+  VoxelNumbers numbers(static_cast<std::size_t>(points.rows() / 8 + 1));
   std::vector<int> voxel(static_cast<std::size_t>(points.rows()));
   std::vector<Eigen::RowVector4d> sums;  // x y z count
   for (Eigen::Index i = 0; i < points.rows(); ++i) {
-    const Eigen::RowVector3d cell = ((points.row(i) - lower) / voxel_size).array().floor();
-    const auto key = static_cast<std::uint64_t>(cell[0] + cells[0] * (cell[1] + cells[1] * cell[2]));
-    const auto [found, inserted] = voxel_of_key.try_emplace(key, static_cast<int>(sums.size()));
-    if (inserted) sums.emplace_back(Eigen::RowVector4d::Zero());
-    sums[static_cast<std::size_t>(found->second)] += Eigen::RowVector4d(points(i, 0), points(i, 1), points(i, 2), 1.0);
-    voxel[static_cast<std::size_t>(i)] = found->second;
+    const int v = numbers.number(keys[static_cast<std::size_t>(i)]);
+    if (static_cast<std::size_t>(v) == sums.size()) sums.emplace_back(Eigen::RowVector4d::Zero());
+    sums[static_cast<std::size_t>(v)] += Eigen::RowVector4d(points(i, 0), points(i, 1), points(i, 2), 1.0);
+    voxel[static_cast<std::size_t>(i)] = v;
   }
   std::vector<int> best(sums.size(), -1);
   std::vector<double> best_distance(sums.size(), std::numeric_limits<double>::infinity());
@@ -134,7 +186,7 @@ std::vector<int> voxel_representatives(const Points& points, double voxel_size) 
       best[v] = static_cast<int>(i);
     }
   }
-  std::sort(best.begin(), best.end());  // the input's order: deterministic, whatever the hashing
+  std::sort(best.begin(), best.end());  // the input's order
   return best;
 }
 

@@ -46,7 +46,25 @@ nlohmann::json mixture_json(const core::MixtureFinish& mixture) {
           {"sigma_normalised", mixture.sigma}};
 }
 
+// Where the time went (core::StageSeconds): the stages of register_observation, summing to `total`; a front end
+// adds its own (reading, transferring) with add_stage_seconds.
+nlohmann::json stage_seconds_json(const core::StageSeconds& stages, double total) {
+  return {{"prepare", stages.prepare}, {"search", stages.search},         {"fits", stages.fits},
+          {"refinement", stages.refinement}, {"statistics", stages.statistics}, {"other", total - stages.sum()},
+          {"total", total}};
+}
+
 }  // namespace
+
+void add_stage_seconds(nlohmann::json& report, const std::string& stage, double seconds, double total) {
+  nlohmann::json& stages = report.at("stage_seconds");
+  stages[stage] = seconds;
+  double sum = 0.0;
+  for (const auto& [name, value] : stages.items())
+    if (name != "other" && name != "total") sum += value.get<double>();
+  stages["other"] = total - sum;
+  stages["total"] = total;
+}
 
 nlohmann::json result_json(const core::RegistrationResult& result, const core::RegistrationSettings& settings,
                            const ResultSource& source) {
@@ -81,6 +99,11 @@ nlohmann::json result_json(const core::RegistrationResult& result, const core::R
             {"strays", result.fit.strays}}},
           {"mixture", mixture_json(result.mixture)},
           {"refinement", refinement_json(result.refinement, settings.refinement)},
+          {"start",
+           {{"outcome", core::enum_name(result.start)},
+            {"warm_score", result.warm_score},
+            {"pose_score", result.pose_score}}},
+          {"stage_seconds", stage_seconds_json(result.stages, result.seconds)},
           {"seconds", result.seconds}};
 }
 

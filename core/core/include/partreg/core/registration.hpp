@@ -61,7 +61,8 @@ struct HistoryStep {
   double seconds = 0.0;  ///< since the start of this space's registration
 };
 
-/// How well the result fits the observation: closest-point distances from the deformed canonical points.
+/// How well the result fits the observation: closest-point distances from the deformed canonical points (to a
+/// cloud of more than 4 x SamplingSettings::observed_points: to its representatives at voxel_size).
 struct FitStatistics {
   double mean = 0.0, p90 = 0.0;                        ///< data units
   double mean_normalised = 0.0, p90_normalised = 0.0;  ///< divided by the model's diagonal
@@ -76,6 +77,48 @@ struct MixtureFinish {
   double sigma = 0.0;    ///< the mixture's final standard deviation per axis after the holistic fit, / the diagonal
 };
 
+/// A start from what is already known: the previous frame of a stream, or a guess. The holistic space's fit
+/// starts there instead of searching poses; the search runs only when that fit's symmetric selection score
+/// says the object moved beyond what a local fit recovers (InitialisationSettings::warm_limit).
+struct WarmStart {
+  /// Canonical data frame -> observed frame; a uniform scale in it is kept as the fit's starting scale.
+  Eigen::Matrix4d T_observed_canonical = Eigen::Matrix4d::Identity();
+  Eigen::VectorXd latent;  ///< the holistic space's latent; empty = the mean shape
+  /// The pose score of the registration it comes from (RegistrationResult::pose_score; 0 = unknown): a warm
+  /// fit that scores no worse than kWarmScoreGrowth times it holds whatever warm_limit says.
+  double score = 0.0;
+};
+
+/// How much worse than the frame before a warm fit may score and still hold: on a held-out mug's partial view
+/// the right start read 0.023 and a start half a turn off 0.029 after the same local fit (docs/speed.md).
+inline constexpr double kWarmScoreGrowth = 1.15;
+
+/// How the pose was found.
+enum class StartOutcome {
+  searched,   ///< the pose search (no warm start)
+  warm,       ///< the warm start held: no search ran
+  warm_lost   ///< the warm start's fit scored above warm_limit: the search ran as without it
+};
+
+template <>
+struct EnumNames<StartOutcome> {
+  static constexpr const char* what = "start outcome";
+  static constexpr std::array<std::pair<StartOutcome, const char*>, 3> table{
+      {{StartOutcome::searched, "searched"}, {StartOutcome::warm, "warm"}, {StartOutcome::warm_lost, "warm_lost"}}};
+};
+
+/// Where a registration's time went: wall seconds of each stage (steady clock, read once at each stage's end),
+/// summing to RegistrationResult::seconds. The front ends add the stages around it (reading the observation,
+/// writing what it transfers) in their own reports.
+struct StageSeconds {
+  double prepare = 0.0;     ///< checks, the voxel pass, strays, the farthest-point subset and its KD-tree
+  double search = 0.0;      ///< the holistic pose search (or the warm start), its winner run to convergence
+  double fits = 0.0;        ///< the mixture finish and the part fits (coupled: its joint problem)
+  double refinement = 0.0;  ///< the fit beyond the space
+  double statistics = 0.0;  ///< the fit statistics and the strays counted
+  double sum() const { return prepare + search + fits + refinement + statistics; }
+};
+
 struct RegistrationResult {
   Variant variant = Variant::holistic;
   std::vector<SpaceFit> fits;        ///< holistic first where it ran, then the parts
@@ -87,6 +130,13 @@ struct RegistrationResult {
   RefinementField refinement;
   MixtureFinish mixture;
   FitStatistics fit;
+  StartOutcome start = StartOutcome::searched;
+  /// The warm start's fit's symmetric selection score (normalised length; 0 without a warm start).
+  double warm_score = 0.0;
+  /// The holistic fit's symmetric selection score (normalised length; 0 for partwise): what a warm start from
+  /// this result is held to (WarmStart::score).
+  double pose_score = 0.0;
+  StageSeconds stages;  ///< where `seconds` went
   double seconds = 0.0;
 };
 
@@ -102,5 +152,22 @@ RegistrationSettings with_model_defaults(RegistrationSettings settings, const Ca
 RegistrationResult register_observation(const CategoryModel& model, const Points& observed,
                                         const RegistrationSettings& settings = {},
                                         const ProgressListener& progress = {});
+
+/// The same, started at `start` (WarmStart). Throws UsageError for a pose that is not a scaled rotation
+/// and translation or a latent of the wrong size.
+RegistrationResult register_observation(const CategoryModel& model, const Points& observed,
+                                        const RegistrationSettings& settings, const WarmStart& start,
+                                        const ProgressListener& progress = {});
+
+/// Where a registration that follows `result` starts: its first fit's pose (the holistic space's where it
+/// ran), unless the result is partwise that fit's latent, and its pose score.
+WarmStart warm_start_of(const RegistrationResult& result);
+
+/// Registers the frames of a stream in order: the first from `start` (or the search, without one), every
+/// later one warm from the frame before (warm_start_of). Each result's `seconds`, `start` and `warm_score`
+/// say what the frame cost and whether the warm start held.
+std::vector<RegistrationResult> register_sequence(const CategoryModel& model, const std::vector<Points>& frames,
+                                                  const RegistrationSettings& settings,
+                                                  const std::optional<WarmStart>& start = std::nullopt);
 
 }  // namespace partreg::core

@@ -100,8 +100,17 @@ struct InitialisationSettings {
   /// The screening rounds match farthest-point subsets of this many canonical and observed points; the
   /// finalists then run on all of them (0 = screen on all). Measured: docs/registration.md.
   int screening_points = 300;
+  /// Before the screening every start gets the cheapest look (a few rigid closest-point steps of its shape on
+  /// the screening's points, scored both ways); starts that land on one pose are merged and only this many
+  /// of the best are screened (0 = every start). Measured: docs/speed.md.
+  int survivors = 0;
   int finalists = 2;                            ///< hypotheses run to convergence
   SelectionScore score = SelectionScore::cost;  ///< what picks the winner
+  /// A warm start (registration.hpp's WarmStart) holds while its fit's symmetric selection score stays
+  /// below this (normalised length) or within kWarmScoreGrowth of the score of the result it came from;
+  /// else the object moved beyond what the local fit recovers and the search runs. A held-out mug's partial
+  /// view read 0.023 at the right pose, 0.029 half a turn off (docs/speed.md).
+  double warm_limit = 0.02;
 };
 
 /// When a space's fit stops.

@@ -30,10 +30,16 @@ struct ResultSource {
 /// option name (registration_options.hpp); per space its latent, pose (T_observed_canonical), scale, cost,
 /// steps, stop reason and seconds; the closest-point fit (data units and normalised by the model's diagonal);
 /// what the refinement did (`refinement`: enabled, and when it was, applied, points, observed, centres,
-/// iterations, seconds and the mean and largest movement of the fitted points as a share of the diagonal) and
-/// the total time.
+/// iterations, seconds and the mean and largest movement of the fitted points as a share of the diagonal);
+/// how the pose was found (`start`: outcome searched | warm | warm_lost, and the warm start's score); where the
+/// time went (`stage_seconds`: prepare, search, fits, refinement, statistics, other and total, wall seconds
+/// summing to total) and the total time.
 nlohmann::json result_json(const core::RegistrationResult& result, const core::RegistrationSettings& settings,
                            const ResultSource& source);
+
+/// Adds a front end's own stage (`read`, `figures`, `transfer`) to a result JSON's `stage_seconds` and sets its
+/// total to `total` (wall seconds of the whole request), so that `other` holds what no stage accounts for.
+void add_stage_seconds(nlohmann::json& report, const std::string& stage, double seconds, double total);
 
 /// The errors against a ground-truth instance (truth_errors.hpp), keys named as its fields.
 nlohmann::json truth_errors_json(const core::TruthErrors& errors);
