@@ -3,10 +3,12 @@
 #include <assimp/postprocess.h>
 #include <assimp/scene.h>
 
+#include <assimp/DefaultIOSystem.h>
 #include <assimp/Importer.hpp>
 #include <fstream>
 #include <sstream>
 
+#include "markup_checks.hpp"
 #include "off_reader.hpp"
 #include "partreg/core/errors.hpp"
 #include "partreg/io/atomic_file.hpp"
@@ -70,12 +72,32 @@ const aiScene* read_tolerant_obj(Assimp::Importer& importer, const std::filesyst
   return importer.ReadFileFromMemory(text.data(), text.size(), flags, "obj");
 }
 
+// assimp opens the files an input names (an OBJ's material library, a glTF's buffers and textures) itself:
+// each passes partreg's checks first. A FIFO would block forever, "../../etc/passwd" would be read as
+// vertices. A refused file is not opened; its reason is kept for the message when the reading then fails.
+class CheckedIoSystem : public Assimp::DefaultIOSystem {
+ public:
+  CheckedIoSystem(std::filesystem::path input, std::string& problem) : input_(std::move(input)), problem_(problem) {}
+  Assimp::IOStream* Open(const char* file, const char* mode) override {
+    const std::string problem = referenced_file_problem(file, input_);
+    if (problem.empty()) return Assimp::DefaultIOSystem::Open(file, mode);
+    if (problem_.empty()) problem_ = problem;
+    return nullptr;
+  }
+
+ private:
+  std::filesystem::path input_;
+  std::string& problem_;
+};
+
 // Every format assimp knows, after partreg's own checks of the formats whose headers assimp trusts.
 core::Mesh read_with_assimp(const std::filesystem::path& path) {
   const std::string name = path.string();
+  std::string refused;  // why a file the input names was not opened
   // ValidateDataStructure runs first among the steps and refuses scenes with broken indices before the
   // other steps walk them.
   Assimp::Importer importer;
+  importer.SetIOHandler(new CheckedIoSystem(path, refused));  // the importer owns it
   const unsigned flags = aiProcess_ValidateDataStructure | aiProcess_Triangulate |
                          aiProcess_JoinIdenticalVertices | aiProcess_FindDegenerates | aiProcess_SortByPType;
   // assimp gets the file's canonical path: looking for a missing material library, its OBJ reader opens
@@ -86,7 +108,7 @@ core::Mesh read_with_assimp(const std::filesystem::path& path) {
   const aiScene* scene = importer.ReadFile(canonical.empty() ? name : canonical.string(), flags);
   if (!scene && lower_extension(path) == ".obj") scene = read_tolerant_obj(importer, path, flags);
   if (!scene || !scene->mRootNode)
-    throw InputError("cannot read mesh " + name + ": " + importer.GetErrorString());
+    throw InputError("cannot read mesh " + name + ": " + (refused.empty() ? importer.GetErrorString() : refused));
   std::vector<Eigen::Vector3d> vertices;
   std::vector<Eigen::Vector3i> faces;
   collect(*scene, *scene->mRootNode, aiMatrix4x4(), name, vertices, faces);
@@ -122,6 +144,7 @@ core::Mesh read_mesh(const std::filesystem::path& path) {
     mesh.faces = std::move(data.faces);
   } else {
     if (extension == ".ply") detail::check_ply_mesh(path);  // assimp trusts PLY headers and face lists
+    if (extension == ".gltf" || extension == ".glb") detail::check_gltf(path, size);
     mesh = read_with_assimp(path);
   }
   mesh.faces = without_degenerate(mesh.faces);
