@@ -78,14 +78,19 @@ const aiScene* read_tolerant_obj(Assimp::Importer& importer, const std::filesyst
 class CheckedIoSystem : public Assimp::DefaultIOSystem {
  public:
   CheckedIoSystem(std::filesystem::path input, std::string& problem) : input_(std::move(input)), problem_(problem) {}
+  // assimp's own Exists() opens the file too (with fopen, which blocks on a FIFO).
+  bool Exists(const char* file) const override { return allowed(file) && Assimp::DefaultIOSystem::Exists(file); }
   Assimp::IOStream* Open(const char* file, const char* mode) override {
-    const std::string problem = referenced_file_problem(file, input_);
-    if (problem.empty()) return Assimp::DefaultIOSystem::Open(file, mode);
-    if (problem_.empty()) problem_ = problem;
-    return nullptr;
+    return allowed(file) ? Assimp::DefaultIOSystem::Open(file, mode) : nullptr;
   }
 
  private:
+  bool allowed(const char* file) const {
+    const std::string problem = referenced_file_problem(file, input_);
+    if (!problem.empty() && problem_.empty()) problem_ = problem;
+    return problem.empty();
+  }
+
   std::filesystem::path input_;
   std::string& problem_;
 };
