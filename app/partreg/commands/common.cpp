@@ -105,6 +105,17 @@ CLI::Validator finite_in(double low, double high) {
       "in " + range);
 }
 
+CLI::Validator seed_check() {
+  return CLI::Validator(
+      [](std::string& text) -> std::string {
+        const bool digits = !text.empty() && text.size() <= 20 && text.find_first_not_of("0123456789") == std::string::npos;
+        if (!digits || (text.size() == 20 && text > "18446744073709551615"))
+          return "'" + text + "' is not a whole number from 0 to 18446744073709551615";
+        return "";
+      },
+      "0 to 2^64-1");
+}
+
 CLI::Validator vector3_check(bool nonzero) {
   return CLI::Validator(
       [nonzero](std::string& text) -> std::string {

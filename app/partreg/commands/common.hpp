@@ -64,6 +64,9 @@ CLI::Range sample_count_range();
 /// or 1e400 would travel on as infinity).
 CLI::Validator finite_in(double low, double high);
 
+/// The check of a seed: a whole number from 0 to 2^64 - 1, written in digits.
+CLI::Validator seed_check();
+
 /// The check of an "X,Y,Z" option: three finite numbers (core::parse_vector3); a direction (`nonzero`) must
 /// not be 0,0,0.
 CLI::Validator vector3_check(bool nonzero);

@@ -264,7 +264,7 @@ void add_eval_command(CLI::App& app) {
       ->capture_default_str();
   command->add_option("--seed", o->settings.seed, "seed of views, samples and perturbations")
       ->capture_default_str()
-      ->check(CLI::NonNegativeNumber);
+      ->check(seed_check());
   command->callback([o] { run_eval(*o); });
 
   auto r = std::make_shared<ReportOptions>();

@@ -82,7 +82,7 @@ void add_synth_command(CLI::App& app) {
       ->check(CLI::Range(2, 1000));
   command->add_option("--seed", options->seed, "random seed of the shape parameters")
       ->capture_default_str()
-      ->check(CLI::NonNegativeNumber);
+      ->check(seed_check());
   command
       ->add_option("--correspondences", options->correspondences, "ground-truth surface points per instance")
       ->capture_default_str()

@@ -126,7 +126,7 @@ void add_train_command(CLI::App& app) {
       ->check(sample_count_range());
   command->add_option("--seed", options->dataset.seed, "sampling seed")
       ->capture_default_str()
-      ->check(CLI::NonNegativeNumber);
+      ->check(seed_check());
   add_training_flags(command, options->settings);
   command->add_option("--json", options->json_path, "write a training summary as JSON ('-' for stdout)");
   command->callback([options] { run_train(*options); });

@@ -90,7 +90,7 @@ void add_views_command(CLI::App& app) {
   using Camera = eval::CameraSettings;
   command->add_option("--fov", options->camera.fov_degrees, "vertical field of view (degrees)")
       ->capture_default_str()
-      ->check(CLI::Range(Camera::kMinFovDegrees, Camera::kMaxFovDegrees));
+      ->check(finite_in(Camera::kMinFovDegrees, Camera::kMaxFovDegrees));
   command->callback([options] { run_views(*options); });
 }
 
