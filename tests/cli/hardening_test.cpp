@@ -226,7 +226,7 @@ TEST_F(Hardening, TheAppHasVersionAndUsageErrorsExitTwo) {
 TEST_F(Hardening, NumbersOutsideTheirRangeAreRefusedWhereTheFlagIsDeclared) {
   const std::string mesh = cube();
   std::string huge;  // coordinates of 1e300: every moved point came out NaN with exit 0
-  for (int i = 0; i < 20; ++i) huge += std::to_string(i % 3) + "e300 " + std::to_string(i % 5) + "e300 " + std::to_string(i) + "\n";
+  for (int i = 0; i < 60; ++i) huge += std::to_string(i % 3) + "e300 " + std::to_string(i % 5) + "e300 " + std::to_string(i) + "\n";
   write("huge.xyz", huge);
   const std::vector<std::string> inputs = {"cube.obj", "huge.xyz"};
   const std::string cpd = "cpd " + mesh + " " + mesh + " --mode nonrigid --points 50 --out " + path("o.ply");
