@@ -7,6 +7,7 @@
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   if (size == 0) return 0;
   const char* name = data[0] % 2 == 0 ? "input.gltf" : "input.glb";
-  partreg::fuzz::read_as_file(data + 1, size - 1, name, [](const auto& path) { partreg::io::read_mesh(path); });
+  partreg::fuzz::read_as_file(data + 1, size - 1, name,
+                              [](const auto& path) { partreg::io::read_mesh(path); });
   return 0;
 }

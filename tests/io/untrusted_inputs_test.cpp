@@ -37,7 +37,8 @@ class Untrusted : public ::testing::Test {
     return dir / name;
   }
   // `read` must throw InputError naming `name` and holding `words`, on one line.
-  static void expect_refused(const std::function<void()>& read, const std::string& name, const std::string& words) {
+  static void expect_refused(const std::function<void()>& read, const std::string& name,
+                             const std::string& words) {
     try {
       read();
       ADD_FAILURE() << name << " was accepted";
@@ -59,8 +60,9 @@ TEST_F(Untrusted, RaggedAsciiPcdRowsAreRefusedNotPadded) {
                  "ragged.pcd", "data line 1 has fewer values");
   expect_refused([&] { read_cloud_file(write("long.pcd", kPcdHeader + "DATA ascii\n0 0 0 7\n1 0 0\n")); },
                  "long.pcd", "data line 1 has more values");
-  expect_refused([&] { read_cloud_file(write("extra.pcd", kPcdHeader + "DATA ascii\n0 0 0\n1 0 0\n2 0 0\n")); },
-                 "extra.pcd", "more points than the header declares");
+  expect_refused(
+      [&] { read_cloud_file(write("extra.pcd", kPcdHeader + "DATA ascii\n0 0 0\n1 0 0\n2 0 0\n")); },
+      "extra.pcd", "more points than the header declares");
   expect_refused([&] { read_cloud_file(write("word.pcd", kPcdHeader + "DATA ascii\n0 0 0\n1 zero 0\n")); },
                  "word.pcd", "'zero' is not a number");
   expect_refused([&] { read_cloud_file(write("short.pcd", kPcdHeader + "DATA ascii\n0 0 0\n")); },
@@ -70,14 +72,16 @@ TEST_F(Untrusted, RaggedAsciiPcdRowsAreRefusedNotPadded) {
 // A PLY value that is no number was reported as the end of the file; nan and inf read as in every format
 // (those points are dropped).
 TEST_F(Untrusted, PlyValuesThatAreNoNumberAreNamedNotCalledTruncated) {
-  const std::string header = "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\n"
-                             "property float z\nend_header\n";
+  const std::string header =
+      "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\n"
+      "property float z\nend_header\n";
   const CloudFile cloud = read_cloud_file(write("nan.ply", header + "0 0 0\nnan 1 2\n1 1 1\n"));
   EXPECT_EQ(cloud.cloud.points.rows(), 2);
   EXPECT_EQ(cloud.dropped_non_finite, 1u);
   expect_refused([&] { read_cloud_file(write("word.ply", header + "0 0 0\nx1 1 2\n1 1 1\n")); }, "word.ply",
                  "PLY value 'x1' is not a number");
-  expect_refused([&] { read_cloud_file(write("cut.ply", header + "0 0 0\n1 1 2\n1 1\n")); }, "cut.ply", "truncated");
+  expect_refused([&] { read_cloud_file(write("cut.ply", header + "0 0 0\n1 1 2\n1 1\n")); }, "cut.ply",
+                 "truncated");
 }
 
 // Fields of every type, a padding field of three values and a packed colour, in ASCII and binary: the
@@ -89,8 +93,10 @@ TEST_F(Untrusted, PcdFieldsOfEveryTypeAreReadWhereTheHeaderPutsThem) {
   write("a.pcd", header + "DATA ascii\n1 2 3 0 0 0 -7 0.5 16711935\n4 5 6 9 9 9 300 1.5 65280\n");
   std::string binary = header + "DATA binary\n";
   auto put = [&binary](auto value) { binary.append(reinterpret_cast<const char*>(&value), sizeof value); };
-  put(1.0f), put(2.0), put(3.0f), binary += std::string(3, '\0'), put(std::int16_t{-7}), put(0.5f), put(16711935u);
-  put(4.0f), put(5.0), put(6.0f), binary += std::string(3, '\x09'), put(std::int16_t{300}), put(1.5f), put(65280u);
+  put(1.0f), put(2.0), put(3.0f), binary += std::string(3, '\0'), put(std::int16_t{-7}), put(0.5f),
+      put(16711935u);
+  put(4.0f), put(5.0), put(6.0f), binary += std::string(3, '\x09'), put(std::int16_t{300}), put(1.5f),
+      put(65280u);
   write("b.pcd", binary);
   for (const char* name : {"a.pcd", "b.pcd"}) {
     const CloudFile cloud = read_cloud_file(dir / name);
@@ -106,15 +112,19 @@ TEST_F(Untrusted, PcdFieldsOfEveryTypeAreReadWhereTheHeaderPutsThem) {
     EXPECT_EQ(cloud.attributes.integers.at("red")[1], 0) << name;
     EXPECT_EQ(cloud.attributes.integers.count("_"), 0u) << name;
   }
-  expect_refused([&] { read_cloud_file(write("wide.pcd", header + "DATA ascii\n1 2 3 0 0 0 40000 0 0\n"
-                                                                  "1 2 3 0 0 0 1 0 0\n")); },
-                 "wide.pcd", "'40000' does not fit field 'label'");
+  expect_refused(
+      [&] {
+        read_cloud_file(write("wide.pcd", header + "DATA ascii\n1 2 3 0 0 0 40000 0 0\n"
+                                                   "1 2 3 0 0 0 1 0 0\n"));
+      },
+      "wide.pcd", "'40000' does not fit field 'label'");
 }
 
 // binary_compressed: LZF with a back reference (four literal bytes, then eight copied from four back).
 TEST_F(Untrusted, CompressedPcdBackReferencesAreDecodedAndCheckedAgainstBothBuffers) {
   const std::string header =
-      "FIELDS x y z\nSIZE 4 4 4\nTYPE F F F\nCOUNT 1 1 1\nWIDTH 1\nHEIGHT 1\nPOINTS 1\nDATA binary_compressed\n";
+      "FIELDS x y z\nSIZE 4 4 4\nTYPE F F F\nCOUNT 1 1 1\nWIDTH 1\nHEIGHT 1\nPOINTS 1\nDATA "
+      "binary_compressed\n";
   const float one = 1.0f;
   std::string lzf(1, '\x03');
   lzf.append(reinterpret_cast<const char*>(&one), 4);
@@ -128,8 +138,10 @@ TEST_F(Untrusted, CompressedPcdBackReferencesAreDecodedAndCheckedAgainstBothBuff
   EXPECT_EQ(cloud.cloud.points.row(0), Eigen::RowVector3d(1, 1, 1));
   std::string far = lzf;
   far[6] = '\x10';  // back 17: before the start of the output
-  expect_refused([&] { read_cloud_file(write("far.pcd", file(far, 12))); }, "far.pcd", "compressed data is corrupt");
-  expect_refused([&] { read_cloud_file(write("cut.pcd", file(lzf.substr(0, 5), 12))); }, "cut.pcd", "corrupt");
+  expect_refused([&] { read_cloud_file(write("far.pcd", file(far, 12))); }, "far.pcd",
+                 "compressed data is corrupt");
+  expect_refused([&] { read_cloud_file(write("cut.pcd", file(lzf.substr(0, 5), 12))); }, "cut.pcd",
+                 "corrupt");
 }
 
 // A triangle as glTF: `buffer` is the buffer's uri ("" for none: a GLB's own chunk).
@@ -151,7 +163,8 @@ std::string glb(std::string json, std::uint32_t stated_length = 0) {
   const std::string bin = triangle_bytes();
   std::string out = "glTF";
   auto put = [&out](std::uint32_t value) { out.append(reinterpret_cast<const char*>(&value), 4); };
-  put(2), put(stated_length ? stated_length : static_cast<std::uint32_t>(12 + 8 + json.size() + 8 + bin.size()));
+  put(2),
+      put(stated_length ? stated_length : static_cast<std::uint32_t>(12 + 8 + json.size() + 8 + bin.size()));
   put(static_cast<std::uint32_t>(json.size())), out += "JSON", out += json;
   put(static_cast<std::uint32_t>(bin.size())), out += std::string("BIN\0", 4), out += bin;
   return out;
@@ -174,10 +187,12 @@ TEST_F(Untrusted, GltfFilesThatCrashedOrHungAssimpAreRefusedFirst) {
   chain += "{}]";
   expect_refused([&] { read_mesh(write("chain.gltf", gltf_json("", chain))); }, "chain.gltf",
                  "deeper than 256 levels");
-  expect_refused([&] { read_mesh(write("cycle.gltf", gltf_json("", R"([{"children":[1]},{"children":[0]}])"))); },
-                 "cycle.gltf", "has a cycle");
-  expect_refused([&] { read_mesh(write("twice.gltf", gltf_json("", R"([{"children":[2]},{"children":[2]},{}])"))); },
-                 "twice.gltf", "has two parents");
+  expect_refused(
+      [&] { read_mesh(write("cycle.gltf", gltf_json("", R"([{"children":[1]},{"children":[0]}])"))); },
+      "cycle.gltf", "has a cycle");
+  expect_refused(
+      [&] { read_mesh(write("twice.gltf", gltf_json("", R"([{"children":[2]},{"children":[2]},{}])"))); },
+      "twice.gltf", "has two parents");
   expect_refused([&] { read_mesh(write("chunk.glb", glb(gltf_json(""), 0xFFFFFFF0u))); }, "chunk.glb",
                  "its GLB header states 4294967280 bytes");
   EXPECT_LT(std::chrono::steady_clock::now() - start, std::chrono::seconds(20));
@@ -212,7 +227,8 @@ TEST_F(Untrusted, VtpNestingAndDeclaredCountsAreCheckedBeforeVtk) {
   expect_refused([&] { read_cloud_file(write("deep.vtp", deep)); }, "deep.vtp", "XML nests deeper than 100");
   std::string huge = kVtp;
   huge.replace(huge.find("NumberOfPoints=\"3\""), 18, "NumberOfPoints=\"99999999999\"");
-  expect_refused([&] { read_cloud_file(write("huge.vtp", huge)); }, "huge.vtp", "declares 99999999999 NumberOfPoints");
+  expect_refused([&] { read_cloud_file(write("huge.vtp", huge)); }, "huge.vtp",
+                 "declares 99999999999 NumberOfPoints");
 }
 
 TEST_F(Untrusted, SideFilesMustBeRegularFiles) {
@@ -244,10 +260,12 @@ TEST_F(Untrusted, OutputsOfOneCommandMustBeDistinct) {
     }
   };
   const std::string same = (dir / "same.ply").string();
-  expect_clash({{"--points-out", same}, {"--mesh-out", same}}, "--points-out and --mesh-out name the same output");
+  expect_clash({{"--points-out", same}, {"--mesh-out", same}},
+               "--points-out and --mesh-out name the same output");
   expect_clash({{"--out", "-"}, {"--json", "/dev/stdout"}}, "--out and --json");
   std::filesystem::create_symlink(same, dir / "link.ply");
-  expect_clash({{"--points-out", same}, {"--mesh-out", (dir / "sub" / ".." / "link.ply").string()}}, "same output");
+  expect_clash({{"--points-out", same}, {"--mesh-out", (dir / "sub" / ".." / "link.ply").string()}},
+               "same output");
 }
 
 TEST_F(Untrusted, DatasetNamesThatCannotBeWrittenBackAreRefused) {

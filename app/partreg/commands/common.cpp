@@ -98,7 +98,8 @@ CLI::Validator finite_in(double low, double high) {
       [=](std::string& text) -> std::string {
         char* end = nullptr;
         const double value = std::strtod(text.c_str(), &end);
-        if (text.empty() || *end != '\0' || !std::isfinite(value)) return "'" + text + "' is not a finite number";
+        if (text.empty() || *end != '\0' || !std::isfinite(value))
+          return "'" + text + "' is not a finite number";
         if (value < low || value > high) return text + " is not in " + range;
         return "";
       },
@@ -108,7 +109,8 @@ CLI::Validator finite_in(double low, double high) {
 CLI::Validator seed_check() {
   return CLI::Validator(
       [](std::string& text) -> std::string {
-        const bool digits = !text.empty() && text.size() <= 20 && text.find_first_not_of("0123456789") == std::string::npos;
+        const bool digits =
+            !text.empty() && text.size() <= 20 && text.find_first_not_of("0123456789") == std::string::npos;
         if (!digits || (text.size() == 20 && text > "18446744073709551615"))
           return "'" + text + "' is not a whole number from 0 to 18446744073709551615";
         return "";

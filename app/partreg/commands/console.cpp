@@ -27,7 +27,7 @@ struct Console {
   NullBuffer null_buffer;
   std::ostream null_stream{&null_buffer};
   std::streambuf* saved_error_buffer = nullptr;  // stderr's own buffer while --quiet holds it
-  int saved_error_fd = -1;  // descriptor 2 while --quiet points it at /dev/null
+  int saved_error_fd = -1;                       // descriptor 2 while --quiet points it at /dev/null
   // Static objects end before the streams' last flush at exit: stderr must not point here by then.
   ~Console() {
     if (saved_error_buffer) std::cerr.rdbuf(saved_error_buffer);

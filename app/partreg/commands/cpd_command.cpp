@@ -149,9 +149,7 @@ void add_cpd_command(CLI::App& app) {
                    "clouds as they are, meshes 1000)")
       ->capture_default_str()
       ->check(point_count_range());
-  command->add_option("--seed", options->seed, "sampling seed")
-      ->capture_default_str()
-      ->check(seed_check());
+  command->add_option("--seed", options->seed, "sampling seed")->capture_default_str()->check(seed_check());
   command
       ->add_option("--beta", options->nonrigid.beta, "kernel width, normalised units (target diagonal = 1)")
       ->capture_default_str();

@@ -137,8 +137,10 @@ void check_register_outputs(const RegisterOptions& options) {
   io::check_output(options.mesh_out, io::OutputKind::mesh, "--mesh-out");
   io::check_output(options.frames_out, io::OutputKind::json, "--frames-out");
   io::check_output(options.json_path, io::OutputKind::json, "--json");
-  io::check_distinct_outputs({{"--points-out", options.points_out}, {"--mesh-out", options.mesh_out},
-                              {"--frames-out", options.frames_out}, {"--json", options.json_path}});
+  io::check_distinct_outputs({{"--points-out", options.points_out},
+                              {"--mesh-out", options.mesh_out},
+                              {"--frames-out", options.frames_out},
+                              {"--json", options.json_path}});
 }
 
 void run_register(const RegisterOptions& options) {

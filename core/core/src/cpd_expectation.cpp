@@ -337,7 +337,8 @@ void check_cpd_points(const Points& points, const char* name) {
   // Normalisation squares coordinate differences: beyond 1e150 they overflow to infinity and every moved
   // point would come out NaN. 1e12 is the bound every other coordinate partreg reads has.
   if (points.cwiseAbs().maxCoeff() > 1e12)
-    throw InputError(std::string("the ") + name + " points hold coordinates beyond 1e12, not a sensible size");
+    throw InputError(std::string("the ") + name +
+                     " points hold coordinates beyond 1e12, not a sensible size");
 }
 
 void check_cpd_common(double outlier_weight, double tolerance, int max_iterations) {

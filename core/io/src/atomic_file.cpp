@@ -51,7 +51,8 @@ int wait_for_fifo_reader(const fs::path& path, const fs::path& destination) {
   for (;;) {
     const int fd = ::open(path.c_str(), O_WRONLY | O_NONBLOCK | O_CLOEXEC);
     if (fd >= 0) return fd;
-    if (errno != ENXIO) throw InputError("cannot write " + destination.string() + ": " + std::strerror(errno));
+    if (errno != ENXIO)
+      throw InputError("cannot write " + destination.string() + ": " + std::strerror(errno));
     if (std::chrono::steady_clock::now() > deadline)
       throw InputError("cannot write " + destination.string() + ": no process read the FIFO within " +
                        std::to_string(kFifoReaderWaitSeconds) + " s");

@@ -22,7 +22,8 @@ namespace {
 using detail::PlyHeader;
 
 // Reads one scalar of `type` in the file's encoding, as a double.
-double read_scalar(std::istream& in, const std::string& type, PlyHeader::Format format, const std::string& file) {
+double read_scalar(std::istream& in, const std::string& type, PlyHeader::Format format,
+                   const std::string& file) {
   if (format == PlyHeader::Format::ascii) {
     // A word, then strtod: "nan" and "inf" read (such points are dropped later, as in every format), and a
     // word that is no number is named, not reported as the end of the file.

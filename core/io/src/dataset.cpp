@@ -24,7 +24,11 @@ bool skipped(const fs::path& entry) {
 bool is_utf8(const std::string& text) {
   for (std::size_t i = 0; i < text.size();) {
     const auto lead = static_cast<unsigned char>(text[i]);
-    const int extra = lead < 0x80 ? 0 : (lead >> 5) == 0x6 ? 1 : (lead >> 4) == 0xe ? 2 : (lead >> 3) == 0x1e ? 3 : -1;
+    const int extra = lead < 0x80           ? 0
+                      : (lead >> 5) == 0x6  ? 1
+                      : (lead >> 4) == 0xe  ? 2
+                      : (lead >> 3) == 0x1e ? 3
+                                            : -1;
     if (extra < 0 || text.size() - i <= static_cast<std::size_t>(extra)) return false;  // cut short
     for (int k = 1; k <= extra; ++k)
       if ((static_cast<unsigned char>(text[i + static_cast<std::size_t>(k)]) >> 6) != 0x2) return false;
@@ -42,7 +46,8 @@ void check_entry_name(const fs::path& entry) {
   for (const unsigned char c : name)
     plain = plain && c >= 0x20 && c != 0x7f && c != ',' && c != '"' && c != ';' && c != '=';
   if (!plain)
-    throw InputError("dataset entry " + entry.string() + ": its name holds a control character, one of , \" ; = "
+    throw InputError("dataset entry " + entry.string() +
+                     ": its name holds a control character, one of , \" ; = "
                      "or bytes that are not UTF-8 (it names an instance or part in the results): rename it");
 }
 

@@ -22,8 +22,8 @@ std::vector<core::Frame> read_frames_file(const std::filesystem::path& path) {
   std::vector<core::Frame> frames;
   try {
     if (json.at("frames").size() > kMaxFrames)
-      throw InputError(file + " holds " + std::to_string(json.at("frames").size()) + " frames, more than partreg reads (" +
-                       std::to_string(kMaxFrames) + ")");
+      throw InputError(file + " holds " + std::to_string(json.at("frames").size()) +
+                       " frames, more than partreg reads (" + std::to_string(kMaxFrames) + ")");
     for (const auto& entry : json.at("frames")) {
       core::Frame frame;
       frame.name = entry.contains("name") ? entry.at("name").get<std::string>() : "frame " + std::to_string(frames.size());

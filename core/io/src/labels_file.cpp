@@ -4,8 +4,8 @@
 #include <nlohmann/json.hpp>
 #include <set>
 
-#include "partreg/core/errors.hpp"
 #include "json_values.hpp"
+#include "partreg/core/errors.hpp"
 #include "partreg/io/atomic_file.hpp"
 #include "partreg/io/read_limits.hpp"
 

@@ -37,20 +37,24 @@ std::string glb_json(std::ifstream& in, std::uint64_t size, const std::string& f
   const std::string header = read_bytes(in, 20, file);
   if (header.compare(0, 4, "glTF") != 0) throw InputError(file + " is not a GLB file (no 'glTF' magic)");
   const std::uint32_t version = little_endian_u32(header, 4), length = little_endian_u32(header, 8);
-  if (version != 1 && version != 2) throw InputError(file + ": GLB version " + std::to_string(version) + " (not 1 or 2)");
+  if (version != 1 && version != 2)
+    throw InputError(file + ": GLB version " + std::to_string(version) + " (not 1 or 2)");
   if (length > size || length < 20)
     throw InputError(file + ": its GLB header states " + std::to_string(length) + " bytes, the file holds " +
                      std::to_string(size));
   // Both versions: the JSON's length at byte 12, the JSON from byte 20 (v2: after its chunk's type).
   const std::uint64_t content = little_endian_u32(header, 12);
-  if (version == 2 && header.compare(16, 4, "JSON") != 0) throw InputError(file + ": its first GLB chunk is not JSON");
+  if (version == 2 && header.compare(16, 4, "JSON") != 0)
+    throw InputError(file + ": its first GLB chunk is not JSON");
   if (content > length - 20)
-    throw InputError(file + ": a GLB chunk states " + std::to_string(content) + " bytes, more than the file holds");
+    throw InputError(file + ": a GLB chunk states " + std::to_string(content) +
+                     " bytes, more than the file holds");
   return read_bytes(in, content, file);
 }
 
 // The children of every node, whether `nodes` is an array (glTF 2: indices) or an object (glTF 1: names).
-std::map<std::string, std::vector<std::string>> node_children(const nlohmann::json& nodes, const std::string& file) {
+std::map<std::string, std::vector<std::string>> node_children(const nlohmann::json& nodes,
+                                                              const std::string& file) {
   std::map<std::string, std::vector<std::string>> children;
   auto add = [&](const std::string& id, const nlohmann::json& node) {
     std::vector<std::string>& list = children[id];
@@ -60,7 +64,8 @@ std::map<std::string, std::vector<std::string>> node_children(const nlohmann::js
     for (const nlohmann::json& child : named) {
       if (!child.is_number_unsigned() && !child.is_string())
         throw InputError(file + ": glTF node " + id + " names a child that is not a node");
-      list.push_back(child.is_string() ? child.get<std::string>() : std::to_string(child.get<std::uint64_t>()));
+      list.push_back(child.is_string() ? child.get<std::string>()
+                                       : std::to_string(child.get<std::uint64_t>()));
     }
   };
   if (nodes.is_array())
@@ -86,10 +91,12 @@ void check_node_forest(const nlohmann::json& nodes, const std::string& file) {
   std::size_t reached = 0;
   for (int depth = 0; !level.empty(); ++depth) {
     if (depth > kMaxNodeDepth)
-      throw InputError(file + ": its glTF node hierarchy is deeper than " + std::to_string(kMaxNodeDepth) + " levels");
+      throw InputError(file + ": its glTF node hierarchy is deeper than " + std::to_string(kMaxNodeDepth) +
+                       " levels");
     reached += level.size();
     std::vector<std::string> next;
-    for (const std::string& id : level) next.insert(next.end(), children.at(id).begin(), children.at(id).end());
+    for (const std::string& id : level)
+      next.insert(next.end(), children.at(id).begin(), children.at(id).end());
     level = std::move(next);
   }
   if (reached != children.size()) throw InputError(file + ": its glTF node hierarchy has a cycle");
@@ -137,13 +144,16 @@ void check_json_nesting(std::string_view text, const std::string& file) {
   for (std::size_t i = 0; i < text.size(); ++i) {
     const char c = text[i];
     if (in_string) {
-      if (c == '\\') ++i;
-      else if (c == '"') in_string = false;
+      if (c == '\\')
+        ++i;
+      else if (c == '"')
+        in_string = false;
     } else if (c == '"') {
       in_string = true;
     } else if (c == '[' || c == '{') {
       if (++depth > kReadBudget.max_nesting)
-        throw InputError(file + ": its JSON nests deeper than " + std::to_string(kReadBudget.max_nesting) + " levels");
+        throw InputError(file + ": its JSON nests deeper than " + std::to_string(kReadBudget.max_nesting) +
+                         " levels");
     } else if (c == ']' || c == '}') {
       --depth;
     }
@@ -157,10 +167,12 @@ void check_gltf(const std::filesystem::path& path, std::uint64_t size) {
   char magic[4] = {};
   in.read(magic, 4);
   in.seekg(0);
-  const std::string json = std::memcmp(magic, "glTF", 4) == 0 ? glb_json(in, size, file) : read_bytes(in, size, file);
+  const std::string json =
+      std::memcmp(magic, "glTF", 4) == 0 ? glb_json(in, size, file) : read_bytes(in, size, file);
   check_json_nesting(json, file);
   const nlohmann::json document = nlohmann::json::parse(json, nullptr, /*allow_exceptions=*/false);
-  if (document.is_discarded() || !document.is_object()) throw InputError(file + " is not a glTF file (invalid JSON)");
+  if (document.is_discarded() || !document.is_object())
+    throw InputError(file + " is not a glTF file (invalid JSON)");
   if (document.contains("nodes")) check_node_forest(document.at("nodes"), file);
 }
 
@@ -182,10 +194,13 @@ void check_vtp(const std::filesystem::path& path) {
     std::string tag;
     char quote = 0;
     for (c = in.get(); c != EOF && (quote || c != '>'); c = in.get()) {
-      if (quote == 0 && (c == '"' || c == '\'')) quote = static_cast<char>(c);
-      else if (quote == c) quote = 0;
+      if (quote == 0 && (c == '"' || c == '\''))
+        quote = static_cast<char>(c);
+      else if (quote == c)
+        quote = 0;
       tag += std::isspace(c) ? ' ' : static_cast<char>(c);
-      if (tag.size() > kMaxTagBytes) throw InputError(file + ": an XML tag is longer than 1 MiB (not a .vtp file?)");
+      if (tag.size() > kMaxTagBytes)
+        throw InputError(file + ": an XML tag is longer than 1 MiB (not a .vtp file?)");
     }
     if (tag.rfind("AppendedData", 0) == 0) return;  // raw bytes follow, not XML
     if (!tag.empty() && tag[0] == '/') {
@@ -195,7 +210,8 @@ void check_vtp(const std::filesystem::path& path) {
     check_vtp_tag(" " + tag, file);
     if (!tag.empty() && tag.back() == '/') continue;  // <Empty/>
     if (++depth > kReadBudget.max_nesting)
-      throw InputError(file + ": its XML nests deeper than " + std::to_string(kReadBudget.max_nesting) + " levels");
+      throw InputError(file + ": its XML nests deeper than " + std::to_string(kReadBudget.max_nesting) +
+                       " levels");
   }
 }
 

@@ -1,9 +1,9 @@
 #include "partreg/io/mesh_io.hpp"
 
+#include <assimp/DefaultIOSystem.h>
 #include <assimp/postprocess.h>
 #include <assimp/scene.h>
 
-#include <assimp/DefaultIOSystem.h>
 #include <assimp/Importer.hpp>
 #include <fstream>
 #include <sstream>
@@ -77,9 +77,12 @@ const aiScene* read_tolerant_obj(Assimp::Importer& importer, const std::filesyst
 // vertices. A refused file is not opened; its reason is kept for the message when the reading then fails.
 class CheckedIoSystem : public Assimp::DefaultIOSystem {
  public:
-  CheckedIoSystem(std::filesystem::path input, std::string& problem) : input_(std::move(input)), problem_(problem) {}
+  CheckedIoSystem(std::filesystem::path input, std::string& problem)
+      : input_(std::move(input)), problem_(problem) {}
   // assimp's own Exists() opens the file too (with fopen, which blocks on a FIFO).
-  bool Exists(const char* file) const override { return allowed(file) && Assimp::DefaultIOSystem::Exists(file); }
+  bool Exists(const char* file) const override {
+    return allowed(file) && Assimp::DefaultIOSystem::Exists(file);
+  }
   Assimp::IOStream* Open(const char* file, const char* mode) override {
     return allowed(file) ? Assimp::DefaultIOSystem::Open(file, mode) : nullptr;
   }
@@ -113,7 +116,8 @@ core::Mesh read_with_assimp(const std::filesystem::path& path) {
   const aiScene* scene = importer.ReadFile(canonical.empty() ? name : canonical.string(), flags);
   if (!scene && lower_extension(path) == ".obj") scene = read_tolerant_obj(importer, path, flags);
   if (!scene || !scene->mRootNode)
-    throw InputError("cannot read mesh " + name + ": " + (refused.empty() ? importer.GetErrorString() : refused));
+    throw InputError("cannot read mesh " + name + ": " +
+                     (refused.empty() ? importer.GetErrorString() : refused));
   std::vector<Eigen::Vector3d> vertices;
   std::vector<Eigen::Vector3i> faces;
   collect(*scene, *scene->mRootNode, aiMatrix4x4(), name, vertices, faces);

@@ -46,7 +46,8 @@ PointTable empty_table(const PcdHeader& header) {
 }
 
 // One ASCII value stored in the field's type; a value the type cannot hold is refused, not wrapped.
-void store_text_value(const std::string& word, const PcdField& field, std::uint8_t* at, const std::string& where) {
+void store_text_value(const std::string& word, const PcdField& field, std::uint8_t* at,
+                      const std::string& where) {
   char* end = nullptr;
   const double value = std::strtod(word.c_str(), &end);
   if (word.empty() || *end != '\0') throw InputError(where + ": '" + word + "' is not a number");
@@ -96,8 +97,8 @@ PointTable read_ascii(std::istream& in, const PcdHeader& header, const std::stri
     ++point;
   }
   if (point < table.points)
-    throw InputError(file + " is truncated: it holds " + std::to_string(point) + " PCD points, its header declares " +
-                     std::to_string(table.points));
+    throw InputError(file + " is truncated: it holds " + std::to_string(point) +
+                     " PCD points, its header declares " + std::to_string(table.points));
   return table;
 }
 
@@ -122,7 +123,8 @@ std::vector<std::uint8_t> lzf_decompress(const std::vector<std::uint8_t>& in, st
     if (control < 32) {
       const std::size_t run = control + 1;
       if (run > in.size() - i || run > size - out.size()) throw InputError(bad);
-      out.insert(out.end(), in.begin() + static_cast<std::ptrdiff_t>(i), in.begin() + static_cast<std::ptrdiff_t>(i + run));
+      out.insert(out.end(), in.begin() + static_cast<std::ptrdiff_t>(i),
+                 in.begin() + static_cast<std::ptrdiff_t>(i + run));
       i += run;
       continue;
     }
@@ -169,9 +171,14 @@ Eigen::VectorXd column(const PointTable& table, const PcdField& field, std::size
       return static_cast<double>(value);
     };
     double& value = values[static_cast<Eigen::Index>(i)];
-    if (field.type == 'F') value = field.size == 4 ? as(float{}) : as(double{});
-    else if (field.type == 'I') value = field.size == 1 ? as(std::int8_t{}) : field.size == 2 ? as(std::int16_t{}) : as(std::int32_t{});
-    else value = field.size == 1 ? as(std::uint8_t{}) : field.size == 2 ? as(std::uint16_t{}) : as(std::uint32_t{});
+    if (field.type == 'F')
+      value = field.size == 4 ? as(float{}) : as(double{});
+    else if (field.type == 'I')
+      value = field.size == 1 ? as(std::int8_t{}) : field.size == 2 ? as(std::int16_t{}) : as(std::int32_t{});
+    else
+      value = field.size == 1   ? as(std::uint8_t{})
+              : field.size == 2 ? as(std::uint16_t{})
+                                : as(std::uint32_t{});
   }
   return values;
 }
@@ -182,7 +189,8 @@ void unpack_colour(const PointTable& table, std::size_t f, PointAttributes& out)
   Eigen::VectorXi red(n), green(n), blue(n);
   for (Eigen::Index i = 0; i < n; ++i) {
     std::uint32_t packed = 0;
-    std::memcpy(&packed, table.bytes.data() + static_cast<std::uint64_t>(i) * table.step + table.offsets[f], 4);
+    std::memcpy(&packed, table.bytes.data() + static_cast<std::uint64_t>(i) * table.step + table.offsets[f],
+                4);
     red[i] = static_cast<int>((packed >> 16) & 0xff);
     green[i] = static_cast<int>((packed >> 8) & 0xff);
     blue[i] = static_cast<int>(packed & 0xff);
@@ -218,7 +226,8 @@ CloudFile cloud_from_table(const PointTable& table, const PcdHeader& header) {
   for (std::size_t f = 0; f < header.fields.size(); ++f) {
     const PcdField& field = header.fields[f];
     const std::string& name = field.name;
-    const bool geometry = name == "x" || name == "y" || name == "z" || (has_normals && name.rfind("normal_", 0) == 0);
+    const bool geometry =
+        name == "x" || name == "y" || name == "z" || (has_normals && name.rfind("normal_", 0) == 0);
     if (geometry || field.count != 1 || name == "_") continue;
     if (name == "rgb" || name == "rgba") {
       if (field.size == 4) unpack_colour(table, f, result.attributes);

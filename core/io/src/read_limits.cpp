@@ -26,7 +26,8 @@ std::uint64_t checked_input_size(const std::filesystem::path& path, std::uint64_
   return size;
 }
 
-std::string referenced_file_problem(const std::filesystem::path& referenced, const std::filesystem::path& input) {
+std::string referenced_file_problem(const std::filesystem::path& referenced,
+                                    const std::filesystem::path& input) {
   namespace fs = std::filesystem;
   std::error_code error;
   if (!fs::exists(referenced, error)) return "";
@@ -35,9 +36,9 @@ std::string referenced_file_problem(const std::filesystem::path& referenced, con
   const fs::path folder = fs::weakly_canonical(fs::absolute(input, error).parent_path(), error);
   const fs::path target = fs::weakly_canonical(fs::absolute(referenced, error), error);
   const auto [end, rest] = std::mismatch(folder.begin(), folder.end(), target.begin(), target.end());
-  if (error || end != folder.end())
-    return input.string() + " refers to " + name + ", outside its own folder";
-  if (!fs::is_regular_file(target, error)) return input.string() + " refers to " + name + ", not a regular file";
+  if (error || end != folder.end()) return input.string() + " refers to " + name + ", outside its own folder";
+  if (!fs::is_regular_file(target, error))
+    return input.string() + " refers to " + name + ", not a regular file";
   if (fs::file_size(target, error) > kReadBudget.max_bytes)
     return input.string() + " refers to " + name + ", larger than partreg reads";
   return "";

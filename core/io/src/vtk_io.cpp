@@ -15,8 +15,8 @@
 
 #include <mutex>
 
-#include "partreg/core/errors.hpp"
 #include "markup_checks.hpp"
+#include "partreg/core/errors.hpp"
 #include "partreg/io/read_limits.hpp"
 
 namespace partreg::io::detail {

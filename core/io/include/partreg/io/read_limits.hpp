@@ -38,7 +38,8 @@ std::uint64_t checked_input_size(const std::filesystem::path& path, std::uint64_
 /// For a file that an input names (an OBJ's material library, a glTF's buffer or texture): the reason it is
 /// refused, or "" when it is a regular file inside the folder of `input` (or below it) and within the
 /// budget. A missing file is not refused here (the library reports it, or does without).
-std::string referenced_file_problem(const std::filesystem::path& referenced, const std::filesystem::path& input);
+std::string referenced_file_problem(const std::filesystem::path& referenced,
+                                    const std::filesystem::path& input);
 
 /// Throws InputError naming `file` when `count` `what` (e.g. "vertices") exceeds `limit`.
 void check_count(const std::string& file, const std::string& what, std::uint64_t count, std::uint64_t limit);
