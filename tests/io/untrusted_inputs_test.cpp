@@ -264,7 +264,7 @@ TEST_F(Untrusted, OutputsOfOneCommandMustBeDistinct) {
                "--points-out and --mesh-out name the same output");
   expect_clash({{"--out", "-"}, {"--json", "/dev/stdout"}}, "--out and --json");
   std::filesystem::create_symlink(same, dir / "link.ply");
-  expect_clash({{"--points-out", same}, {"--mesh-out", (dir / "sub" / ".." / "link.ply").string()}},
+  expect_clash({{"--points-out", same}, {"--mesh-out", (dir / "." / "link.ply").string()}},
                "same output");
 }
 

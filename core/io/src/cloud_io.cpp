@@ -266,6 +266,9 @@ CloudFile read_cloud_file(const std::filesystem::path& path) {
     throw InputError(name + ": unknown point cloud extension '" + extension +
                      "' (expected .pcd, .ply, .vtp, .xyz, .txt)");
   drop_non_finite(file, name);
+  // 1e300 squared overflows: sampling looped forever and CPD returned NaN. 1e12 bounds every coordinate.
+  if (file.cloud.points.size() > 0 && file.cloud.points.cwiseAbs().maxCoeff() > 1e12)
+    throw InputError(name + " holds coordinates beyond 1e12, not a sensible size");
   return file;
 }
 

@@ -1,6 +1,7 @@
 #include "partreg/io/dataset.hpp"
 
 #include <algorithm>
+#include <cstdio>
 #include <map>
 #include <numeric>
 #include <set>
@@ -45,10 +46,20 @@ void check_entry_name(const fs::path& entry) {
   bool plain = is_utf8(name);
   for (const unsigned char c : name)
     plain = plain && c >= 0x20 && c != 0x7f && c != ',' && c != '"' && c != ';' && c != '=';
-  if (!plain)
-    throw InputError("dataset entry " + entry.string() +
-                     ": its name holds a control character, one of , \" ; = "
-                     "or bytes that are not UTF-8 (it names an instance or part in the results): rename it");
+  if (plain) return;
+  std::string shown;  // the name as one printable line: other bytes as \xNN
+  for (const unsigned char c : entry.string()) {
+    if (c >= 0x20 && c < 0x7f) {
+      shown += static_cast<char>(c);
+      continue;
+    }
+    char hex[5];
+    std::snprintf(hex, sizeof hex, "\\x%02x", c);
+    shown += hex;
+  }
+  throw InputError("dataset entry " + shown +
+                   ": its name holds a control character, one of , \" ; = "
+                   "or bytes that are not UTF-8 (it names an instance or part in the results): rename it");
 }
 
 std::vector<fs::path> sorted_entries(const fs::path& folder) {

@@ -160,6 +160,8 @@ core::Mesh read_mesh(const std::filesystem::path& path) {
   if (mesh.faces.rows() == 0)
     throw InputError(name + " has no faces: it is a point cloud, read it as a cloud");
   if (!mesh.vertices.allFinite()) throw InputError(name + " has NaN or infinite vertex coordinates");
+  if (mesh.vertices.cwiseAbs().maxCoeff() > 1e12)
+    throw InputError(name + " holds coordinates beyond 1e12, not a sensible size");
   return mesh;
 }
 
