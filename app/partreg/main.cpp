@@ -1,6 +1,7 @@
 // partreg: the command-line entry point. Each subcommand lives in commands/; this file only turns
 // failures into one line on stderr and an exit code (0 success, 1 runtime failure, 2 usage error).
 #include <iostream>
+#include <string>
 
 #include "partreg/commands/commands.hpp"
 #include "partreg/commands/console.hpp"
@@ -9,9 +10,26 @@
 
 namespace {
 
+// Control characters (a newline or an escape sequence in a file name) as \xNN: the error stays one line and
+// cannot drive the terminal.
+std::string printable(const std::string& text) {
+  std::string out;
+  for (const unsigned char c : text) {
+    if (c >= 0x20 && c != 0x7f) {
+      out += static_cast<char>(c);
+      continue;
+    }
+    const char* digits = "0123456789abcdef";
+    out += "\\x";
+    out += digits[c >> 4];
+    out += digits[c & 15];
+  }
+  return out;
+}
+
 int fail(const char* what, int code) {
   partreg::app::restore_error_stream();  // --quiet still shows the error
-  std::cerr << "partreg: " << what << '\n';
+  std::cerr << "partreg: " << printable(what) << '\n';
   return code;
 }
 

@@ -318,6 +318,7 @@ void bind_evaluation(py::module_& m) {
       [](py::handle geometry, int count, int width, int height, double fov_degrees, double margin,
          int threads) {
         const eval::CameraSettings camera{width, height, fov_degrees, margin};
+        eval::check_camera(camera);  // before the scene is built: Embree aborts on a degenerate camera
         const bool is_mesh = py::isinstance<core::Mesh>(geometry);
         const core::Mesh mesh = is_mesh ? geometry.cast<core::Mesh>() : core::Mesh{};
         const core::Points cloud = is_mesh ? core::Points() : to_points(geometry, "geometry");

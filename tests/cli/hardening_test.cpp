@@ -222,5 +222,61 @@ TEST_F(Hardening, TheAppHasVersionAndUsageErrorsExitTwo) {
 }
 #endif
 
+// Numbers that passed the flags before and crashed, ran away or came out NaN: each is refused at once.
+TEST_F(Hardening, NumbersOutsideTheirRangeAreRefusedWhereTheFlagIsDeclared) {
+  const std::string mesh = cube();
+  std::string huge;  // coordinates of 1e300: every moved point came out NaN with exit 0
+  for (int i = 0; i < 60; ++i)
+    huge += std::to_string(i % 3) + "e300 " + std::to_string(i % 5) + "e300 " + std::to_string(i) + "\n";
+  write("huge.xyz", huge);
+  const std::vector<std::string> inputs = {"cube.obj", "huge.xyz"};
+  const std::string cpd = "cpd " + mesh + " " + mesh + " --mode nonrigid --points 50 --out " + path("o.ply");
+  expect_failure(
+      "cpd " + mesh + " " + path("huge.xyz") + " --mode nonrigid --points 50 --out " + path("o.ply"), 1,
+      "coordinates beyond 1e12", inputs);
+  expect_failure(cpd + " --beta inf", 2, "beta", inputs);
+  expect_failure(cpd + " --beta 1e308", 2, "beta", inputs);
+  expect_failure(cpd + " --lambda inf", 2, "lambda", inputs);
+  expect_failure(cpd + " --tolerance inf", 2, "tolerance", inputs);
+  expect_failure(cpd + " --seed -1", 2, "--seed", inputs);
+  expect_failure("views " + mesh + " --count 12 --fov 1e-300 --out " + path("v"), 2, "--fov", inputs);
+  for (const char* up : {"nan,0,1", "0,0,0", "0,1,0,junk"})
+    expect_failure("render " + mesh + " --up " + up + " --out " + path("r.png"), 2, "--up", inputs);
+  expect_failure("render " + mesh + " --point-radius nan --out " + path("r.png"), 2, "--point-radius",
+                 inputs);
+  expect_failure("eval " + path("nowhere") + " --folds -1 --out " + path("e"), 2, "--folds", inputs);
+  expect_failure("eval " + path("nowhere") + " --samples -1 --out " + path("e"), 2, "--samples", inputs);
+  expect_failure("eval " + path("nowhere") + " --seed -4 --out " + path("e"), 2, "--seed", inputs);
+  expect_failure("eval " + path("nowhere") + " --shard 2/99999999999999999999 --out " + path("e"), 2,
+                 "--shard", inputs);
+  expect_failure("train " + path("nowhere") + " --samples 50000000 --out " + path("m.prm"), 2, "--samples",
+                 inputs);
+  expect_failure("register " + path("no.prm") + " " + mesh + " --samples 50000000", 2, "--samples", inputs);
+}
+
+TEST_F(Hardening, TwoOutputsOfOneCommandMayNotBeTheSameFile) {
+  const std::string mesh = cube();
+  const std::vector<std::string> inputs = {"cube.obj"};
+  const std::string cpd = "cpd " + mesh + " " + mesh + " --mode rigid --points 50";
+  expect_failure(cpd + " --out - --json -", 2, "--out and --json name the same output", inputs);
+  expect_failure("register " + path("no.prm") + " " + mesh + " --points-out " + path("same.ply") +
+                     " --mesh-out " + path("same.ply"),
+                 2, "--points-out and --mesh-out", inputs);
+  expect_failure("register " + path("no.prm") + " " + mesh + " --frames " + mesh + " --frames-out " +
+                     path("x.json") + " --json " + path("x.json"),
+                 2, "--frames-out and --json", inputs);
+}
+
+// A control character in a file name is shown escaped: the error stays one line and cannot drive the
+// terminal.
+TEST_F(Hardening, ControlCharactersInNamesAreEscapedInMessages) {
+  const Outcome result = testing::run_partreg("cpd '" + path("a\x1b[31mb\nc.ply") + "' '" + path("x.ply") +
+                                              "' --out " + path("o.ply"));
+  EXPECT_EQ(result.exit_code, 1) << result.output;
+  EXPECT_NE(result.output.find("a\\x1b[31mb\\x0ac.ply"), std::string::npos) << result.output;
+  EXPECT_EQ(result.output.find('\x1b'), std::string::npos) << result.output;
+  EXPECT_EQ(std::count(result.output.begin(), result.output.end(), '\n'), 1) << result.output;
+}
+
 }  // namespace
 }  // namespace partreg

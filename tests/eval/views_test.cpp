@@ -75,5 +75,19 @@ TEST(ViewCaster, EmptyInputIsRefused) {
   EXPECT_THROW(eval::ViewCaster(core::Points(0, 3)), InputError);
 }
 
+// A field of view of 1e-300 degrees put the camera 1e300 sizes away, where Embree aborted the process.
+TEST(ViewCaster, CamerasOutsideTheDeclaredRangesAreUsageErrors) {
+  using Camera = eval::CameraSettings;
+  const Camera fine{};
+  EXPECT_NO_THROW(eval::check_camera(fine));
+  for (const Camera bad :
+       {Camera{160, 120, 1e-300, 1.1}, Camera{160, 120, NAN, 1.1}, Camera{160, 120, 180.0, 1.1},
+        Camera{160, 120, 45.0, INFINITY}, Camera{160, 120, 45.0, 0.5}, Camera{0, 120, 45.0, 1.1},
+        Camera{160, 100000, 45.0, 1.1}})
+    EXPECT_THROW(eval::check_camera(bad), UsageError) << bad.fov_degrees << " " << bad.margin;
+  const eval::ViewCaster caster(core::Points::Random(50, 3));
+  EXPECT_THROW(caster.cast(Eigen::Vector3d::UnitZ(), Camera{160, 120, 1e-300, 1.1}), UsageError);
+}
+
 }  // namespace
 }  // namespace partreg

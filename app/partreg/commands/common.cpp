@@ -1,12 +1,15 @@
 #include "partreg/commands/common.hpp"
 
 #include <algorithm>
+#include <cmath>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <iostream>
 #include <sstream>
 
 #include "partreg/core/errors.hpp"
+#include "partreg/core/part_selection.hpp"
 #include "partreg/core/sampling.hpp"
 #include "partreg/io/atomic_file.hpp"
 #include "partreg/io/geometry_io.hpp"
@@ -83,6 +86,53 @@ std::pair<int, int> parse_size(const std::string& text, const std::string& optio
                      " pixels a side and " + std::to_string(kMaxPixels >> 20) + " megapixels");
   return {static_cast<int>(width), static_cast<int>(height)};
 }
+
+CLI::Validator finite_in(double low, double high) {
+  auto text_of = [](double value) {
+    std::ostringstream out;
+    out << value;
+    return out.str();
+  };
+  const std::string range = "[" + text_of(low) + ", " + text_of(high) + "]";
+  return CLI::Validator(
+      [=](std::string& text) -> std::string {
+        char* end = nullptr;
+        const double value = std::strtod(text.c_str(), &end);
+        if (text.empty() || *end != '\0' || !std::isfinite(value))
+          return "'" + text + "' is not a finite number";
+        if (value < low || value > high) return text + " is not in " + range;
+        return "";
+      },
+      "in " + range);
+}
+
+CLI::Validator seed_check() {
+  return CLI::Validator(
+      [](std::string& text) -> std::string {
+        const bool digits =
+            !text.empty() && text.size() <= 20 && text.find_first_not_of("0123456789") == std::string::npos;
+        if (!digits || (text.size() == 20 && text > "18446744073709551615"))
+          return "'" + text + "' is not a whole number from 0 to 18446744073709551615";
+        return "";
+      },
+      "0 to 2^64-1");
+}
+
+CLI::Validator vector3_check(bool nonzero) {
+  return CLI::Validator(
+      [nonzero](std::string& text) -> std::string {
+        try {
+          const Eigen::Vector3d v = core::parse_vector3(text, "'" + text + "'");
+          if (nonzero && !(v.norm() > 1e-12)) return "'" + text + "' has zero length";
+        } catch (const UsageError& error) {
+          return error.what();
+        }
+        return "";
+      },
+      "X,Y,Z");
+}
+
+CLI::Range sample_count_range() { return CLI::Range(std::uint64_t{1}, std::uint64_t{5'000'000}); }
 
 CLI::Range point_count_range() {
   return CLI::Range(std::uint64_t{1}, static_cast<std::uint64_t>(io::kReadBudget.max_points));

@@ -55,4 +55,20 @@ using io::StagedFolder;
 /// number is a usage error naming the option instead of wrapping around in a size_t.
 CLI::Range point_count_range();
 
+/// The check of an option drawing surface samples from a mesh (register, train and eval --samples): 1 to
+/// 5,000,000. Five million samples are 120 MB of points; registration and training use thousands, and 5e7
+/// held 3 GB for minutes.
+CLI::Range sample_count_range();
+
+/// The check of a real-valued option: a finite number in [low, high] (CLI::Range lets NaN through, and "inf"
+/// or 1e400 would travel on as infinity).
+CLI::Validator finite_in(double low, double high);
+
+/// The check of a seed: a whole number from 0 to 2^64 - 1, written in digits.
+CLI::Validator seed_check();
+
+/// The check of an "X,Y,Z" option: three finite numbers (core::parse_vector3); a direction (`nonzero`) must
+/// not be 0,0,0.
+CLI::Validator vector3_check(bool nonzero);
+
 }  // namespace partreg::app

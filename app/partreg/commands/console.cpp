@@ -1,5 +1,6 @@
 #include "partreg/commands/console.hpp"
 
+#include <fcntl.h>
 #include <unistd.h>
 
 #include <algorithm>
@@ -26,6 +27,7 @@ struct Console {
   NullBuffer null_buffer;
   std::ostream null_stream{&null_buffer};
   std::streambuf* saved_error_buffer = nullptr;  // stderr's own buffer while --quiet holds it
+  int saved_error_fd = -1;                       // descriptor 2 while --quiet points it at /dev/null
   // Static objects end before the streams' last flush at exit: stderr must not point here by then.
   ~Console() {
     if (saved_error_buffer) std::cerr.rdbuf(saved_error_buffer);
@@ -41,6 +43,14 @@ void set_quiet() {
   Console& state = console();
   state.verbosity = Verbosity::quiet;
   if (!state.saved_error_buffer) state.saved_error_buffer = std::cerr.rdbuf(&state.null_buffer);
+  // Libraries write to descriptor 2 themselves (Ceres's residual warnings, VTK, Embree): quiet is quiet for
+  // them too. The descriptor is kept for the error line.
+  if (state.saved_error_fd >= 0) return;
+  const int null = ::open("/dev/null", O_WRONLY | O_CLOEXEC);
+  if (null < 0) return;
+  state.saved_error_fd = ::fcntl(2, F_DUPFD_CLOEXEC, 3);
+  if (state.saved_error_fd >= 0) ::dup2(null, 2);
+  ::close(null);
 }
 
 }  // namespace
@@ -68,6 +78,12 @@ void restore_error_stream() {
   Console& state = console();
   if (state.saved_error_buffer) std::cerr.rdbuf(state.saved_error_buffer);
   state.saved_error_buffer = nullptr;
+  if (state.saved_error_fd >= 0) {
+    std::cerr.flush();
+    ::dup2(state.saved_error_fd, 2);
+    ::close(state.saved_error_fd);
+    state.saved_error_fd = -1;
+  }
 }
 
 std::string clock_text(double seconds) {

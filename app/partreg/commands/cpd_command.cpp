@@ -107,6 +107,7 @@ void run_cpd(const CpdOptions& options) {
     throw UsageError("--mode must be rigid, affine or nonrigid, not '" + options.mode + "'");
   io::check_output(options.out_path, io::OutputKind::cloud, "--out");
   io::check_output(options.json_path, io::OutputKind::json, "--json");
+  io::check_distinct_outputs({{"--out", options.out_path}, {"--json", options.json_path}});
   const core::Points source =
       read_points_logged(options.source_path, options.points, options.seed, options.exact_points);
   const core::Points target =
@@ -148,7 +149,7 @@ void add_cpd_command(CLI::App& app) {
                    "clouds as they are, meshes 1000)")
       ->capture_default_str()
       ->check(point_count_range());
-  command->add_option("--seed", options->seed, "sampling seed")->capture_default_str();
+  command->add_option("--seed", options->seed, "sampling seed")->capture_default_str()->check(seed_check());
   command
       ->add_option("--beta", options->nonrigid.beta, "kernel width, normalised units (target diagonal = 1)")
       ->capture_default_str();

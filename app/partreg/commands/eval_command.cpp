@@ -49,8 +49,9 @@ struct EvalOptions {
 
 void parse_shard(const std::string& text, eval::EvalSettings& settings) {
   std::smatch match;
-  if (!std::regex_match(text, match, std::regex(R"((\d+)/(\d+))")))
-    throw UsageError("--shard must look like 2/4 (the second of four), not '" + text + "'");
+  // At most six digits each: a longer number would overflow std::stoi (and no run has a million shards).
+  if (!std::regex_match(text, match, std::regex(R"((\d{1,6})/(\d{1,6}))")))
+    throw UsageError("--shard must look like 2/4 (the second of four, at most 999999), not '" + text + "'");
   settings.shard = std::stoi(match[1]) - 1;
   settings.shard_count = std::stoi(match[2]);
   if (settings.shard_count < 1 || settings.shard < 0 || settings.shard >= settings.shard_count)
@@ -250,8 +251,10 @@ void add_eval_command(CLI::App& app) {
       ->delimiter(',')
       ->capture_default_str();
   add_threads_flag(command, o->settings.threads);
-  command->add_option("--folds", o->folds, "0 = leave-one-out (the protocol's choice by default)");
-  command->add_option("--views", o->views, "partial views per instance: 0, 12, 42, 162, ...");
+  command->add_option("--folds", o->folds, "0 = leave-one-out (the protocol's choice by default)")
+      ->check(CLI::Range(0, 100000));
+  command->add_option("--views", o->views, "partial views per instance: 0, 12, 42, 162, ...")
+      ->check(CLI::Range(0, 100000));
   command->add_option("--levels", o->levels, "which of the paper's five sweep levels (1-5), e.g. 1,3,5")
       ->delimiter(',');
   command
@@ -282,7 +285,8 @@ void add_eval_command(CLI::App& app) {
   command
       ->add_option("--samples", o->dataset.points_per_instance,
                    "surface samples per mesh instance (what the folds train on)")
-      ->capture_default_str();
+      ->capture_default_str()
+      ->check(sample_count_range());
   command
       ->add_option(
           "--truth-samples", o->settings.truth_points,
@@ -291,7 +295,8 @@ void add_eval_command(CLI::App& app) {
       ->check(CLI::NonNegativeNumber)
       ->capture_default_str();
   command->add_option("--seed", o->settings.seed, "seed of views, samples and perturbations")
-      ->capture_default_str();
+      ->capture_default_str()
+      ->check(seed_check());
   command->callback([o] { run_eval(*o); });
 
   auto r = std::make_shared<ReportOptions>();

@@ -144,6 +144,11 @@ void check_register_outputs(const RegisterOptions& options) {
   io::check_output(options.frames_out, io::OutputKind::json, "--frames-out");
   io::check_output(options.json_path, io::OutputKind::json, "--json");
   io::check_output(options.grasps_out, io::OutputKind::json, "--grasps-out");
+  io::check_distinct_outputs({{"--points-out", options.points_out},
+                              {"--mesh-out", options.mesh_out},
+                              {"--frames-out", options.frames_out},
+                              {"--grasps-out", options.grasps_out},
+                              {"--json", options.json_path}});
 }
 
 using Clock = std::chrono::steady_clock;
@@ -274,7 +279,7 @@ void add_register_command(CLI::App& app) {
       "parts; observed frame): report the errors against it (with parts: each part against its own)");
   command->add_option("--samples", o->mesh_samples, "points sampled from an observed mesh")
       ->capture_default_str()
-      ->check(point_count_range());
+      ->check(sample_count_range());
   command->callback([o] { run_register(*o); });
 }
 

@@ -133,12 +133,15 @@ void add_render_commands(CLI::App& app) {
   command->add_option("--color-by", o->color_by, "part (unlabelled files grey) | file | none")
       ->capture_default_str();
   command->add_option("--background", o->background, "white | transparent")->capture_default_str();
-  command->add_option("--eye", o->eye, "X,Y,Z camera position (with --target; overrides --view)");
-  command->add_option("--target", o->target, "X,Y,Z point the camera looks at");
-  command->add_option("--up", o->up, "X,Y,Z up direction of the camera")->capture_default_str();
+  command->add_option("--eye", o->eye, "X,Y,Z camera position (with --target; overrides --view)")
+      ->check(vector3_check(false));
+  command->add_option("--target", o->target, "X,Y,Z point the camera looks at")->check(vector3_check(false));
+  command->add_option("--up", o->up, "X,Y,Z up direction of the camera")
+      ->capture_default_str()
+      ->check(vector3_check(true));
   command->add_option("--point-radius", o->point_radius, "splat radius in data units (0: automatic)")
       ->capture_default_str()
-      ->check(CLI::Range(0.0, 1e12));
+      ->check(finite_in(0.0, 1e12));
   command->add_option("--antialias", o->antialias, "msaa (4 samples) | edge (fast) | none")
       ->capture_default_str();
   command->add_flag("--wireframe", o->wireframe, "draw mesh edges over the surfaces");

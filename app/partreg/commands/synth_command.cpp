@@ -80,7 +80,9 @@ void add_synth_command(CLI::App& app) {
   command->add_option("--instances", options->instances, "how many instances (2 to 1000)")
       ->capture_default_str()
       ->check(CLI::Range(2, 1000));
-  command->add_option("--seed", options->seed, "random seed of the shape parameters")->capture_default_str();
+  command->add_option("--seed", options->seed, "random seed of the shape parameters")
+      ->capture_default_str()
+      ->check(seed_check());
   command
       ->add_option("--correspondences", options->correspondences, "ground-truth surface points per instance")
       ->capture_default_str()

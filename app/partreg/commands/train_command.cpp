@@ -100,6 +100,7 @@ void run_train(TrainOptions& options) {
   if (!options.canonical.empty()) options.settings.canonical = options.canonical;
   io::check_output(options.out_path, io::OutputKind::model, "--out");
   io::check_output(options.json_path, io::OutputKind::json, "--json");
+  io::check_distinct_outputs({{"--out", options.out_path}, {"--json", options.json_path}});
   io::Dataset dataset = io::read_dataset(options.dataset_path, options.dataset);
   hold_out(dataset, options.held_out);
   std::cerr << "dataset " << dataset.name << ": " << dataset.instances.size() << " instances"
@@ -144,8 +145,10 @@ void add_train_command(CLI::App& app) {
                       "instance to leave out of training, by name (repeatable): to register it as a new one");
   command->add_option("--samples", options->dataset.points_per_instance, "surface samples per mesh instance")
       ->capture_default_str()
-      ->check(point_count_range());
-  command->add_option("--seed", options->dataset.seed, "sampling seed")->capture_default_str();
+      ->check(sample_count_range());
+  command->add_option("--seed", options->dataset.seed, "sampling seed")
+      ->capture_default_str()
+      ->check(seed_check());
   add_training_flags(command, options->settings);
   command->add_option("--json", options->json_path, "write a training summary as JSON ('-' for stdout)");
   command->callback([options] { run_train(*options); });

@@ -44,6 +44,7 @@ eval::ViewCaster make_caster(const std::string& path) {
 void run_views(ViewsOptions& options) {
   const core::ThreadBudget budget(options.threads);
   parse_resolution(options.resolution, options.camera);
+  eval::check_camera(options.camera);  // before the output folder is made or the input read
   const std::vector<Eigen::Vector3d> directions = eval::sphere_directions(options.count);
   StagedFolder folder(options.out_path);  // refuses a folder holding other files before any work
   const eval::ViewCaster caster = make_caster(options.input_path);
@@ -86,8 +87,10 @@ void add_views_command(CLI::App& app) {
       ->capture_default_str()
       ->check(CLI::Range(1, 100000));
   command->add_option("--resolution", options->resolution, "depth image size WxH")->capture_default_str();
+  using Camera = eval::CameraSettings;
   command->add_option("--fov", options->camera.fov_degrees, "vertical field of view (degrees)")
-      ->capture_default_str();
+      ->capture_default_str()
+      ->check(finite_in(Camera::kMinFovDegrees, Camera::kMaxFovDegrees));
   command->callback([options] { run_views(*options); });
 }
 

@@ -334,12 +334,17 @@ void check_cpd_points(const Points& points, const char* name) {
                      std::to_string(points.rows()));
   if (!points.allFinite())
     throw InputError(std::string("the ") + name + " points hold NaN or infinite values");
+  // Normalisation squares coordinate differences: beyond 1e150 they overflow to infinity and every moved
+  // point would come out NaN. 1e12 is the bound every other coordinate partreg reads has.
+  if (points.cwiseAbs().maxCoeff() > 1e12)
+    throw InputError(std::string("the ") + name +
+                     " points hold coordinates beyond 1e12, not a sensible size");
 }
 
 void check_cpd_common(double outlier_weight, double tolerance, int max_iterations) {
   if (!(outlier_weight >= 0.0 && outlier_weight < 1.0))
     throw UsageError("the CPD outlier weight w must be in [0, 1), got " + std::to_string(outlier_weight));
-  if (!(tolerance > 0.0)) throw UsageError("the CPD tolerance must be positive");
+  if (!(tolerance > 0.0 && tolerance <= 1.0)) throw UsageError("the CPD tolerance must be in (0, 1]");
   if (max_iterations < 1) throw UsageError("the CPD iteration cap must be at least 1");
 }
 

@@ -3,6 +3,7 @@
 #include <cmath>
 
 #include "cpd_expectation.hpp"
+#include "option_builders.hpp"
 #include "partreg/core/cpd.hpp"
 #include "partreg/core/errors.hpp"
 #include "partreg/core/gaussian_kernel.hpp"
@@ -49,8 +50,11 @@ Eigen::MatrixXd low_rank_m_step(const detail::Expectation& e, const Eigen::Matri
 }
 
 void check_settings(const NonrigidCpdSettings& s) {
-  if (!(s.beta > 0.0)) throw UsageError("CPD beta must be positive, got " + std::to_string(s.beta));
-  if (!(s.lambda > 0.0)) throw UsageError("CPD lambda must be positive, got " + std::to_string(s.lambda));
+  // A kernel 10 diagonals wide is already rigid; 1e308 or infinity would only overflow G to NaN.
+  if (!(s.beta >= 1e-6 && s.beta <= 10.0))
+    throw UsageError("CPD beta must be in [1e-6, 10] (normalised length), not " + detail::text_of(s.beta));
+  if (!(s.lambda >= 1e-6 && s.lambda <= 1e6))
+    throw UsageError("CPD lambda must be in [1e-6, 1e6], not " + detail::text_of(s.lambda));
   if (s.kernel_rank < 0) throw UsageError("the kernel rank must be 0 (automatic) or positive");
   detail::check_fast_e_step(s.truncation, s.cell_size);
   detail::check_coarse_points(s.coarse_points);

@@ -222,6 +222,14 @@ void write_rows_csv(const std::filesystem::path& path, const std::vector<EvalRow
 }
 
 std::vector<EvalRow> read_rows_csv(const std::filesystem::path& path) {
+  // A FIFO or a link to /dev/zero would read forever: a regular file within 256 MiB (io's document budget;
+  // eval does not link io).
+  std::error_code error;
+  if (!std::filesystem::is_regular_file(path, error))
+    throw InputError(path.string() +
+                     (std::filesystem::exists(path, error) ? " is not a regular file" : ": no such file"));
+  if (std::filesystem::file_size(path, error) > (256u << 20))
+    throw InputError(path.string() + " is larger than partreg reads (256 MiB)");
   std::ifstream in(path);
   if (!in) throw InputError("cannot read " + path.string());
   std::string line;

@@ -148,9 +148,20 @@ ViewCaster::~ViewCaster() = default;
 ViewCaster::ViewCaster(ViewCaster&&) noexcept = default;
 ViewCaster& ViewCaster::operator=(ViewCaster&&) noexcept = default;
 
+void check_camera(const CameraSettings& camera) {
+  using C = CameraSettings;
+  if (camera.width < 1 || camera.height < 1 || camera.width > C::kMaxPixelsPerSide ||
+      camera.height > C::kMaxPixelsPerSide)
+    throw UsageError("camera size must be 1 to " + std::to_string(C::kMaxPixelsPerSide) + " pixels a side");
+  if (!(camera.fov_degrees >= C::kMinFovDegrees && camera.fov_degrees <= C::kMaxFovDegrees))
+    throw UsageError("field of view must be " + std::to_string(C::kMinFovDegrees) + " to " +
+                     std::to_string(C::kMaxFovDegrees) + " degrees");
+  if (!(camera.margin >= 1.0 && camera.margin <= C::kMaxMargin))
+    throw UsageError("camera margin must be 1 to " + std::to_string(C::kMaxMargin));
+}
+
 View ViewCaster::cast(const Eigen::Vector3d& direction, const CameraSettings& camera) const {
-  if (camera.width < 1 || camera.height < 1 || !(camera.fov_degrees > 0 && camera.fov_degrees < 180))
-    throw UsageError("camera needs a positive size and a field of view between 0 and 180 degrees");
+  check_camera(camera);
   View view;
   view.direction = direction.normalized();
   const double half_fov = camera.fov_degrees * M_PI / 360.0;

@@ -1,11 +1,15 @@
 #include "partreg/io/atomic_file.hpp"
 
+#include <fcntl.h>
 #include <signal.h>
 #include <unistd.h>
 
 #include <algorithm>
 #include <atomic>
 #include <cerrno>
+#include <chrono>
+#include <cstring>
+#include <thread>
 
 #include "partreg/core/errors.hpp"
 
@@ -36,6 +40,26 @@ void remove_stale_staging(const fs::path& destination) {
   }
 }
 
+// Opening a FIFO for writing blocks until a process opens it for reading, and a run would hang after all
+// its work. A non-blocking open fails (ENXIO) while nobody reads: retry for a while, then give up. The
+// descriptor returned (or -1 for anything but a FIFO) is held while the writer opens the FIFO again, so
+// that open finds the reader.
+int wait_for_fifo_reader(const fs::path& path, const fs::path& destination) {
+  std::error_code error;
+  if (!fs::is_fifo(fs::status(path, error))) return -1;
+  const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(kFifoReaderWaitSeconds);
+  for (;;) {
+    const int fd = ::open(path.c_str(), O_WRONLY | O_NONBLOCK | O_CLOEXEC);
+    if (fd >= 0) return fd;
+    if (errno != ENXIO)
+      throw InputError("cannot write " + destination.string() + ": " + std::strerror(errno));
+    if (std::chrono::steady_clock::now() > deadline)
+      throw InputError("cannot write " + destination.string() + ": no process read the FIFO within " +
+                       std::to_string(kFifoReaderWaitSeconds) + " s");
+    std::this_thread::sleep_for(std::chrono::milliseconds(50));
+  }
+}
+
 }  // namespace
 
 OutputTarget resolve_output(const fs::path& destination) {
@@ -62,7 +86,14 @@ void write_atomically(const fs::path& destination, const std::function<void(cons
   const OutputTarget target = resolve_output(destination);
   try {
     if (target.direct) {
-      writer(target.path);
+      const int reader_held = wait_for_fifo_reader(target.path, destination);
+      try {
+        writer(target.path);
+      } catch (...) {
+        if (reader_held >= 0) ::close(reader_held);
+        throw;
+      }
+      if (reader_held >= 0) ::close(reader_held);
       return;
     }
     remove_stale_staging(target.path);

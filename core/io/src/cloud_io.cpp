@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdlib>
 #include <cstring>
 #include <fstream>
 #include <set>
@@ -21,10 +22,16 @@ namespace {
 using detail::PlyHeader;
 
 // Reads one scalar of `type` in the file's encoding, as a double.
-double read_scalar(std::istream& in, const std::string& type, PlyHeader::Format format) {
+double read_scalar(std::istream& in, const std::string& type, PlyHeader::Format format,
+                   const std::string& file) {
   if (format == PlyHeader::Format::ascii) {
-    double value = 0.0;
-    in >> value;
+    // A word, then strtod: "nan" and "inf" read (such points are dropped later, as in every format), and a
+    // word that is no number is named, not reported as the end of the file.
+    std::string word;
+    if (!(in >> word)) return 0.0;  // the stream's failure says: truncated
+    char* end = nullptr;
+    const double value = std::strtod(word.c_str(), &end);
+    if (*end != '\0') throw InputError(file + ": PLY value '" + word + "' is not a number");
     return value;
   }
   unsigned char bytes[8] = {};
@@ -76,7 +83,7 @@ CloudFile read_ply_cloud(const std::filesystem::path& path, std::uint64_t file_s
     if (!columns.count(axis)) throw InputError(file + ": PLY vertices have no '" + axis + "' property");
   for (Eigen::Index i = 0; i < n; ++i)
     for (const auto& property : vertex.properties)
-      columns[property.name][i] = read_scalar(in, property.type, header.format);
+      columns[property.name][i] = read_scalar(in, property.type, header.format, file);
   if (!in) throw InputError(file + " is truncated: it ends before its " + std::to_string(n) + " vertices");
 
   CloudFile result;
@@ -261,6 +268,9 @@ CloudFile read_cloud_file(const std::filesystem::path& path) {
     throw InputError(name + ": unknown point cloud extension '" + extension +
                      "' (expected .pcd, .ply, .vtp, .xyz, .txt)");
   drop_non_finite(file, name);
+  // 1e300 squared overflows: sampling looped forever and CPD returned NaN. 1e12 bounds every coordinate.
+  if (file.cloud.points.size() > 0 && file.cloud.points.cwiseAbs().maxCoeff() > 1e12)
+    throw InputError(name + " holds coordinates beyond 1e12, not a sensible size");
   return file;
 }
 

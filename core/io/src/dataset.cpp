@@ -1,6 +1,7 @@
 #include "partreg/io/dataset.hpp"
 
 #include <algorithm>
+#include <cstdio>
 #include <map>
 #include <numeric>
 #include <set>
@@ -20,10 +21,54 @@ bool skipped(const fs::path& entry) {
   return name.empty() || name[0] == '.' || name == "ground_truth";
 }
 
+// Whether `text` is well-formed UTF-8 (JSON, which models and results are written in, holds nothing else).
+bool is_utf8(const std::string& text) {
+  for (std::size_t i = 0; i < text.size();) {
+    const auto lead = static_cast<unsigned char>(text[i]);
+    const int extra = lead < 0x80           ? 0
+                      : (lead >> 5) == 0x6  ? 1
+                      : (lead >> 4) == 0xe  ? 2
+                      : (lead >> 3) == 0x1e ? 3
+                                            : -1;
+    if (extra < 0 || text.size() - i <= static_cast<std::size_t>(extra)) return false;  // cut short
+    for (int k = 1; k <= extra; ++k)
+      if ((static_cast<unsigned char>(text[i + static_cast<std::size_t>(k)]) >> 6) != 0x2) return false;
+    i += static_cast<std::size_t>(extra) + 1;
+  }
+  return true;
+}
+
+// Entry names become instance and part names: JSON strings in models and results, fields of eval's CSV
+// rows ("body=1e-5;handle=2e-5"). A name that could not be written back (a newline, a comma, bytes that are
+// not UTF-8) is refused before any work, naming the file.
+void check_entry_name(const fs::path& entry) {
+  const std::string name = entry.filename().string();
+  bool plain = is_utf8(name);
+  for (const unsigned char c : name)
+    plain = plain && c >= 0x20 && c != 0x7f && c != ',' && c != '"' && c != ';' && c != '=';
+  if (plain) return;
+  std::string shown;  // the name as one printable line: other bytes as \xNN
+  for (const unsigned char c : entry.string()) {
+    if (c >= 0x20 && c < 0x7f) {
+      shown += static_cast<char>(c);
+      continue;
+    }
+    char hex[5];
+    std::snprintf(hex, sizeof hex, "\\x%02x", c);
+    shown += hex;
+  }
+  throw InputError("dataset entry " + shown +
+                   ": its name holds a control character, one of , \" ; = "
+                   "or bytes that are not UTF-8 (it names an instance or part in the results): rename it");
+}
+
 std::vector<fs::path> sorted_entries(const fs::path& folder) {
   std::vector<fs::path> entries;
   for (const auto& entry : fs::directory_iterator(folder))
-    if (!skipped(entry.path())) entries.push_back(entry.path());
+    if (!skipped(entry.path())) {
+      check_entry_name(entry.path());
+      entries.push_back(entry.path());
+    }
   std::sort(entries.begin(), entries.end());
   return entries;
 }

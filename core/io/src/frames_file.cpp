@@ -5,11 +5,13 @@
 
 #include "partreg/core/errors.hpp"
 #include "partreg/io/atomic_file.hpp"
+#include "partreg/io/read_limits.hpp"
 
 namespace partreg::io {
 
 std::vector<core::Frame> read_frames_file(const std::filesystem::path& path) {
   const std::string file = path.string();
+  checked_input_size(path, kReadBudget.max_document_bytes);  // a regular file (not a FIFO) within the budget
   std::ifstream in(path);
   if (!in) throw InputError("cannot open frames file " + file);
   const nlohmann::json json = nlohmann::json::parse(in, nullptr, /*allow_exceptions=*/false);
@@ -19,6 +21,9 @@ std::vector<core::Frame> read_frames_file(const std::filesystem::path& path) {
     throw InputError(file + ": unsupported frames file version");
   std::vector<core::Frame> frames;
   try {
+    if (json.at("frames").size() > kMaxFrames)
+      throw InputError(file + " holds " + std::to_string(json.at("frames").size()) +
+                       " frames, more than partreg reads (" + std::to_string(kMaxFrames) + ")");
     for (const auto& entry : json.at("frames")) {
       core::Frame frame;
       frame.name = entry.contains("name") ? entry.at("name").get<std::string>() : "frame " + std::to_string(frames.size());

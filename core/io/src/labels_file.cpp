@@ -4,9 +4,10 @@
 #include <nlohmann/json.hpp>
 #include <set>
 
-#include "partreg/core/errors.hpp"
 #include "json_values.hpp"
+#include "partreg/core/errors.hpp"
 #include "partreg/io/atomic_file.hpp"
+#include "partreg/io/read_limits.hpp"
 
 namespace partreg::io {
 
@@ -32,6 +33,7 @@ int PartLabels::part_index(const std::string& name) {
 
 PartLabels read_labels_file(const std::filesystem::path& path) {
   const std::string file = path.string();
+  checked_input_size(path, kReadBudget.max_document_bytes);  // a regular file (not a FIFO) within the budget
   std::ifstream in(path);
   if (!in) throw InputError("cannot open labels file " + file);
   const nlohmann::json json = nlohmann::json::parse(in, nullptr, /*allow_exceptions=*/false);

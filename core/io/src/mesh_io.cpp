@@ -1,5 +1,6 @@
 #include "partreg/io/mesh_io.hpp"
 
+#include <assimp/DefaultIOSystem.h>
 #include <assimp/postprocess.h>
 #include <assimp/scene.h>
 
@@ -10,6 +11,7 @@
 #include <sstream>
 #include <vector>
 
+#include "markup_checks.hpp"
 #include "off_reader.hpp"
 #include "partreg/core/errors.hpp"
 #include "partreg/io/atomic_file.hpp"
@@ -73,12 +75,40 @@ const aiScene* read_tolerant_obj(Assimp::Importer& importer, const std::filesyst
   return importer.ReadFileFromMemory(text.data(), text.size(), flags, "obj");
 }
 
+// assimp opens the files an input names (an OBJ's material library, a glTF's buffers and textures) itself:
+// each passes partreg's checks first. A FIFO would block forever, "../../etc/passwd" would be read as
+// vertices. A refused file is not opened; its reason is kept for the message when the reading then fails.
+class CheckedIoSystem : public Assimp::DefaultIOSystem {
+ public:
+  CheckedIoSystem(std::filesystem::path input, std::string& problem)
+      : input_(std::move(input)), problem_(problem) {}
+  // assimp's own Exists() opens the file too (with fopen, which blocks on a FIFO).
+  bool Exists(const char* file) const override {
+    return allowed(file) && Assimp::DefaultIOSystem::Exists(file);
+  }
+  Assimp::IOStream* Open(const char* file, const char* mode) override {
+    return allowed(file) ? Assimp::DefaultIOSystem::Open(file, mode) : nullptr;
+  }
+
+ private:
+  bool allowed(const char* file) const {
+    const std::string problem = referenced_file_problem(file, input_);
+    if (!problem.empty() && problem_.empty()) problem_ = problem;
+    return problem.empty();
+  }
+
+  std::filesystem::path input_;
+  std::string& problem_;
+};
+
 // Every format assimp knows, after partreg's own checks of the formats whose headers assimp trusts.
 core::Mesh read_with_assimp(const std::filesystem::path& path) {
   const std::string name = path.string();
+  std::string refused;  // why a file the input names was not opened
   // ValidateDataStructure runs first among the steps and refuses scenes with broken indices before the
   // other steps walk them.
   Assimp::Importer importer;
+  importer.SetIOHandler(new CheckedIoSystem(path, refused));  // the importer owns it
   const unsigned flags = aiProcess_ValidateDataStructure | aiProcess_Triangulate |
                          aiProcess_JoinIdenticalVertices | aiProcess_FindDegenerates | aiProcess_SortByPType;
   // assimp gets the file's canonical path: looking for a missing material library, its OBJ reader opens
@@ -89,7 +119,8 @@ core::Mesh read_with_assimp(const std::filesystem::path& path) {
   const aiScene* scene = importer.ReadFile(canonical.empty() ? name : canonical.string(), flags);
   if (!scene && lower_extension(path) == ".obj") scene = read_tolerant_obj(importer, path, flags);
   if (!scene || !scene->mRootNode)
-    throw InputError("cannot read mesh " + name + ": " + importer.GetErrorString());
+    throw InputError("cannot read mesh " + name + ": " +
+                     (refused.empty() ? importer.GetErrorString() : refused));
   std::vector<Eigen::Vector3d> vertices;
   std::vector<Eigen::Vector3i> faces;
   collect(*scene, *scene->mRootNode, aiMatrix4x4(), name, vertices, faces);
@@ -126,12 +157,15 @@ core::Mesh read_mesh(const std::filesystem::path& path) {
     mesh.faces = std::move(data.faces);
   } else {
     if (extension == ".ply") detail::check_ply_mesh(path);  // assimp trusts PLY headers and face lists
+    if (extension == ".gltf" || extension == ".glb") detail::check_gltf(path, size);
     mesh = read_with_assimp(path);
   }
   mesh.faces = without_degenerate(mesh.faces);
   if (mesh.faces.rows() == 0)
     throw InputError(name + " has no faces: it is a point cloud, read it as a cloud");
   if (!mesh.vertices.allFinite()) throw InputError(name + " has NaN or infinite vertex coordinates");
+  if (mesh.vertices.cwiseAbs().maxCoeff() > 1e12)
+    throw InputError(name + " holds coordinates beyond 1e12, not a sensible size");
   return mesh;
 }
 

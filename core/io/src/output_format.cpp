@@ -67,4 +67,32 @@ void check_output(const std::string& path, OutputKind kind, const std::string& o
   resolve_output(path);
 }
 
+namespace {
+
+// Where an output's bytes really go, as one comparable name ("" for a device that discards them).
+std::string destination_of(const std::string& path) {
+  namespace fs = std::filesystem;
+  if (path == "-" || path == "/dev/stdout") return "<stdout>";
+  const fs::path target = resolve_output(path).path;
+  std::error_code error;
+  if (fs::is_character_file(fs::status(target, error)) && target == "/dev/null") return "";
+  const fs::path canonical = fs::weakly_canonical(fs::absolute(target, error), error);
+  return (canonical.empty() ? target : canonical).string();
+}
+
+}  // namespace
+
+void check_distinct_outputs(const std::vector<NamedOutput>& outputs) {
+  std::map<std::string, std::string> option_of;  // destination -> the first option naming it
+  for (const NamedOutput& output : outputs) {
+    if (output.path.empty()) continue;
+    const std::string destination = destination_of(output.path);
+    if (destination.empty()) continue;
+    const auto [seen, inserted] = option_of.emplace(destination, output.option);
+    if (!inserted)
+      throw UsageError(seen->second + " and " + output.option + " name the same output (" + output.path +
+                       "): give each its own");
+  }
+}
+
 }  // namespace partreg::io

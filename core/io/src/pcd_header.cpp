@@ -64,7 +64,7 @@ void check_fields(const PcdHeader& header, const std::string& file) {
     if (!header.has_field(axis)) throw InputError(file + ": PCD file has no '" + axis + "' field");
 }
 
-void check_body(const PcdHeader& header, std::istream& in, std::uint64_t available, const std::string& file) {
+void check_body(PcdHeader& header, std::istream& in, std::uint64_t available, const std::string& file) {
   if (header.data == PcdHeader::Data::binary) {
     check_fits(file, "points", header.points, header.bytes_per_point(), available);
     return;
@@ -86,6 +86,7 @@ void check_body(const PcdHeader& header, std::istream& in, std::uint64_t availab
                      " bytes, not the " + std::to_string(header.points * header.bytes_per_point()) +
                      " its header declares");
   if (header.points > 0 && sizes[0] == 0) throw InputError(file + ": PCD compressed data is empty");
+  header.compressed_bytes = sizes[0];
 }
 
 // PCL splits header lines at spaces, tabs and carriage returns only; other control characters (a vertical

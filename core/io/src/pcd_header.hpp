@@ -1,6 +1,6 @@
 #pragma once
-// partreg's own check of a PCD header before PCL sees the file (internal to partreg_io). PCL trusts its
-// header and crashes on malformed ones; this parser trusts nothing and has no PCL dependency.
+// partreg's own check of a PCD header before its data is read (internal to partreg_io). The header is
+// trusted by nothing until it passes here; this parser has no PCL dependency.
 
 #include <cstdint>
 #include <istream>
@@ -20,6 +20,7 @@ struct PcdHeader {
   enum class Data { ascii, binary, binary_compressed } data = Data::ascii;
   std::vector<PcdField> fields;
   std::uint64_t points = 0;
+  std::uint32_t compressed_bytes = 0;  ///< binary_compressed: LZF bytes after the 8-byte size prefix
   std::uint64_t bytes_per_point() const;
   bool has_field(const std::string& name) const;
 };

@@ -4,9 +4,13 @@
 #include <pcl/console/print.h>
 #include <pcl/io/pcd_io.h>
 
+#include <cmath>
+#include <cstdlib>
 #include <cstring>
 #include <fstream>
 #include <mutex>
+#include <sstream>
+#include <vector>
 
 #include "partreg/core/errors.hpp"
 #include "pcd_header.hpp"
@@ -20,125 +24,236 @@ void silence_pcl() {
   std::call_once(once, [] { pcl::console::setVerbosityLevel(pcl::console::L_ALWAYS); });
 }
 
-const pcl::PCLPointField* find_field(const pcl::PCLPointCloud2& blob, const std::string& name) {
-  for (const auto& field : blob.fields)
-    if (field.name == name) return &field;
-  return nullptr;
-}
+// The points of a PCD file in one layout whatever its encoding: `points` rows of `step` bytes, each field's
+// values at its offset in the file's own types (as DATA binary stores them). PCL's reader is not used for
+// reading: it trusts its input and crashed on fuzzed files that pass the header check.
+struct PointTable {
+  std::vector<std::uint8_t> bytes;
+  std::vector<std::uint64_t> offsets;  ///< of each header field
+  std::uint64_t step = 0;
+  std::uint64_t points = 0;
+};
 
-std::size_t datatype_size(std::uint8_t datatype) {
-  using F = pcl::PCLPointField;
-  switch (datatype) {
-    case F::INT8: case F::UINT8: return 1;
-    case F::INT16: case F::UINT16: return 2;
-    case F::INT32: case F::UINT32: case F::FLOAT32: return 4;
-    case F::FLOAT64: return 8;
-    default: return 0;  // INT64/UINT64 in newer PCL: not read
+PointTable empty_table(const PcdHeader& header) {
+  PointTable table;
+  for (const PcdField& field : header.fields) {
+    table.offsets.push_back(table.step);
+    table.step += static_cast<std::uint64_t>(field.size) * field.count;
   }
+  table.points = header.points;
+  table.bytes.resize(table.points * table.step);
+  return table;
 }
 
-// Reads value 0 of `field` at `point` as a double; the caller has checked that the field lies in the point.
-double read_value(const pcl::PCLPointCloud2& blob, const pcl::PCLPointField& field, std::size_t point) {
-  const std::uint8_t* at = blob.data.data() + point * blob.point_step + field.offset;
-  auto as = [at](auto value) {
-    std::memcpy(&value, at, sizeof value);
-    return static_cast<double>(value);
-  };
-  using F = pcl::PCLPointField;
-  switch (field.datatype) {
-    case F::INT8: return as(std::int8_t{});
-    case F::UINT8: return as(std::uint8_t{});
-    case F::INT16: return as(std::int16_t{});
-    case F::UINT16: return as(std::uint16_t{});
-    case F::INT32: return as(std::int32_t{});
-    case F::UINT32: return as(std::uint32_t{});
-    case F::FLOAT32: return as(float{});
-    default: return as(double{});
+// One ASCII value stored in the field's type; a value the type cannot hold is refused, not wrapped.
+void store_text_value(const std::string& word, const PcdField& field, std::uint8_t* at,
+                      const std::string& where) {
+  char* end = nullptr;
+  const double value = std::strtod(word.c_str(), &end);
+  if (word.empty() || *end != '\0') throw InputError(where + ": '" + word + "' is not a number");
+  auto put = [at](auto typed) { std::memcpy(at, &typed, sizeof typed); };
+  if (field.type == 'F') return field.size == 4 ? put(static_cast<float>(value)) : put(value);
+  const bool is_signed = field.type == 'I';
+  const double low = is_signed ? -std::ldexp(1.0, 8 * field.size - 1) : 0.0;
+  const double high = std::ldexp(1.0, 8 * field.size - (is_signed ? 1 : 0));
+  if (!(value >= low && value < high) || value != std::floor(value))
+    throw InputError(where + ": '" + word + "' does not fit field '" + field.name + "' (" + field.type +
+                     std::to_string(field.size) + ")");
+  if (is_signed) {
+    const auto integer = static_cast<std::int64_t>(value);
+    if (field.size == 1) return put(static_cast<std::int8_t>(integer));
+    if (field.size == 2) return put(static_cast<std::int16_t>(integer));
+    return put(static_cast<std::int32_t>(integer));
   }
+  const auto integer = static_cast<std::uint64_t>(value);
+  if (field.size == 1) return put(static_cast<std::uint8_t>(integer));
+  if (field.size == 2) return put(static_cast<std::uint16_t>(integer));
+  put(static_cast<std::uint32_t>(integer));
 }
 
-// PCL's blob must agree with itself before any field is read from it.
-void check_blob(const pcl::PCLPointCloud2& blob, const std::string& file) {
-  const std::uint64_t points = static_cast<std::uint64_t>(blob.width) * blob.height;
-  if (blob.point_step == 0 || blob.data.size() / blob.point_step < points)
-    throw InputError("PCD file " + file + " holds less data than its header declares");
-  for (const auto& field : blob.fields) {
-    const std::size_t size = datatype_size(field.datatype);
-    if (size == 0 || field.offset + size * std::max<std::uint32_t>(field.count, 1) > blob.point_step)
-      throw InputError("PCD file " + file + ": field '" + field.name + "' does not fit in its point");
+bool is_blank(const std::string& line) { return line.find_first_not_of(" \t\r") == std::string::npos; }
+
+// DATA ascii: one point a line, exactly as many values as the fields declare (a ragged row is refused, not
+// padded with zeros); blank lines are skipped.
+PointTable read_ascii(std::istream& in, const PcdHeader& header, const std::string& file) {
+  PointTable table = empty_table(header);
+  std::string line;
+  std::uint64_t point = 0;
+  for (std::uint64_t line_number = 1; std::getline(in, line); ++line_number) {
+    if (is_blank(line)) continue;
+    const std::string where = file + ": PCD data line " + std::to_string(line_number);
+    if (point == table.points) throw InputError(where + " holds more points than the header declares");
+    std::istringstream words(line);
+    std::string word;
+    std::uint8_t* row = table.bytes.data() + point * table.step;
+    for (std::size_t f = 0; f < header.fields.size(); ++f) {
+      const PcdField& field = header.fields[f];
+      for (int v = 0; v < field.count; ++v) {
+        if (!(words >> word)) throw InputError(where + " has fewer values than the header's fields declare");
+        store_text_value(word, field, row + table.offsets[f] + v * field.size, where);
+      }
+    }
+    if (words >> word) throw InputError(where + " has more values than the header's fields declare");
+    ++point;
   }
+  if (point < table.points)
+    throw InputError(file + " is truncated: it holds " + std::to_string(point) +
+                     " PCD points, its header declares " + std::to_string(table.points));
+  return table;
 }
 
-Eigen::VectorXd column(const pcl::PCLPointCloud2& blob, const pcl::PCLPointField& field) {
-  const std::size_t n = static_cast<std::size_t>(blob.width) * blob.height;
-  Eigen::VectorXd values(static_cast<Eigen::Index>(n));
-  for (std::size_t i = 0; i < n; ++i) values[static_cast<Eigen::Index>(i)] = read_value(blob, field, i);
+std::vector<std::uint8_t> read_exactly(std::istream& in, std::uint64_t size, const std::string& file) {
+  std::vector<std::uint8_t> bytes(size);
+  if (!in.read(reinterpret_cast<char*>(bytes.data()), static_cast<std::streamsize>(size)))
+    throw InputError(file + " is truncated (in its PCD data)");
+  return bytes;
+}
+
+// LZF (as PCL writes it): a control byte below 32 starts a run of that many plus one literal bytes; any other
+// copies (its top three bits, or 7 plus the next byte) plus two bytes from an earlier position. Every read
+// and write is checked: a stream that would leave either buffer is refused.
+std::vector<std::uint8_t> lzf_decompress(const std::vector<std::uint8_t>& in, std::uint64_t size,
+                                         const std::string& file) {
+  const std::string bad = file + ": PCD compressed data is corrupt";
+  std::vector<std::uint8_t> out;
+  out.reserve(size);
+  std::size_t i = 0;
+  while (i < in.size()) {
+    const unsigned control = in[i++];
+    if (control < 32) {
+      const std::size_t run = control + 1;
+      if (run > in.size() - i || run > size - out.size()) throw InputError(bad);
+      out.insert(out.end(), in.begin() + static_cast<std::ptrdiff_t>(i),
+                 in.begin() + static_cast<std::ptrdiff_t>(i + run));
+      i += run;
+      continue;
+    }
+    std::size_t length = control >> 5;
+    if (length == 7) {
+      if (i == in.size()) throw InputError(bad);
+      length += in[i++];
+    }
+    length += 2;
+    if (i == in.size()) throw InputError(bad);
+    const std::size_t back = ((control & 0x1f) << 8) + in[i++] + 1;
+    if (back > out.size() || length > size - out.size()) throw InputError(bad);
+    for (std::size_t k = 0, from = out.size() - back; k < length; ++k) out.push_back(out[from + k]);
+  }
+  if (out.size() != size) throw InputError(bad + " (it unpacks to fewer bytes than its header states)");
+  return out;
+}
+
+PointTable read_binary(std::istream& in, const PcdHeader& header, const std::string& file) {
+  PointTable table = empty_table(header);
+  if (header.data == PcdHeader::Data::binary) {
+    table.bytes = read_exactly(in, table.bytes.size(), file);
+    return table;
+  }
+  // binary_compressed stores each field's values for all points together: turn it into rows.
+  const std::vector<std::uint8_t> planar =
+      lzf_decompress(read_exactly(in, header.compressed_bytes, file), table.bytes.size(), file);
+  std::uint64_t from = 0;
+  for (std::size_t f = 0; f < header.fields.size(); ++f) {
+    const std::uint64_t width = static_cast<std::uint64_t>(header.fields[f].size) * header.fields[f].count;
+    for (std::uint64_t point = 0; point < table.points; ++point, from += width)
+      std::memcpy(table.bytes.data() + point * table.step + table.offsets[f], planar.data() + from, width);
+  }
+  return table;
+}
+
+// Value 0 of field `f` of every point as doubles.
+Eigen::VectorXd column(const PointTable& table, const PcdField& field, std::size_t f) {
+  Eigen::VectorXd values(static_cast<Eigen::Index>(table.points));
+  for (std::uint64_t i = 0; i < table.points; ++i) {
+    const std::uint8_t* at = table.bytes.data() + i * table.step + table.offsets[f];
+    auto as = [at](auto value) {
+      std::memcpy(&value, at, sizeof value);
+      return static_cast<double>(value);
+    };
+    double& value = values[static_cast<Eigen::Index>(i)];
+    if (field.type == 'F')
+      value = field.size == 4 ? as(float{}) : as(double{});
+    else if (field.type == 'I')
+      value = field.size == 1 ? as(std::int8_t{}) : field.size == 2 ? as(std::int16_t{}) : as(std::int32_t{});
+    else
+      value = field.size == 1   ? as(std::uint8_t{})
+              : field.size == 2 ? as(std::uint16_t{})
+                                : as(std::uint32_t{});
+  }
   return values;
 }
 
-bool is_integer(const pcl::PCLPointField& field) {
-  using F = pcl::PCLPointField;
-  return field.datatype != F::FLOAT32 && field.datatype != F::FLOAT64 && field.datatype != F::UINT32;
-}
-
 // A packed colour (PCL's rgb/rgba: bytes b, g, r, a of a 32-bit value) as three integer attributes.
-void unpack_colour(const pcl::PCLPointCloud2& blob, const pcl::PCLPointField& field, PointAttributes& out) {
-  if (datatype_size(field.datatype) != 4) return;
-  const std::size_t n = static_cast<std::size_t>(blob.width) * blob.height;
-  Eigen::VectorXi red(static_cast<Eigen::Index>(n)), green(red.size()), blue(red.size());
-  for (std::size_t i = 0; i < n; ++i) {
+void unpack_colour(const PointTable& table, std::size_t f, PointAttributes& out) {
+  const auto n = static_cast<Eigen::Index>(table.points);
+  Eigen::VectorXi red(n), green(n), blue(n);
+  for (Eigen::Index i = 0; i < n; ++i) {
     std::uint32_t packed = 0;
-    std::memcpy(&packed, blob.data.data() + i * blob.point_step + field.offset, 4);
-    const auto row = static_cast<Eigen::Index>(i);
-    red[row] = static_cast<int>((packed >> 16) & 0xff);
-    green[row] = static_cast<int>((packed >> 8) & 0xff);
-    blue[row] = static_cast<int>(packed & 0xff);
+    std::memcpy(&packed, table.bytes.data() + static_cast<std::uint64_t>(i) * table.step + table.offsets[f],
+                4);
+    red[i] = static_cast<int>((packed >> 16) & 0xff);
+    green[i] = static_cast<int>((packed >> 8) & 0xff);
+    blue[i] = static_cast<int>(packed & 0xff);
   }
   out.integers["red"] = red;
   out.integers["green"] = green;
   out.integers["blue"] = blue;
 }
 
+std::ptrdiff_t field_index(const PcdHeader& header, const std::string& name) {
+  for (std::size_t f = 0; f < header.fields.size(); ++f)
+    if (header.fields[f].name == name) return static_cast<std::ptrdiff_t>(f);
+  return -1;
+}
+
+// x, y, z (and normal_x/y/z when all three are present) as geometry; every other one-value field as an
+// attribute: integer types as integers, floating point and 32-bit unsigned as reals.
+CloudFile cloud_from_table(const PointTable& table, const PcdHeader& header) {
+  CloudFile result;
+  result.cloud.points.resize(static_cast<Eigen::Index>(table.points), 3);
+  const char* axes[3] = {"x", "y", "z"};
+  const char* normal_axes[3] = {"normal_x", "normal_y", "normal_z"};
+  bool has_normals = true;
+  for (const char* name : normal_axes) has_normals = has_normals && field_index(header, name) >= 0;
+  if (has_normals) result.cloud.normals.resize(result.cloud.points.rows(), 3);
+  for (int d = 0; d < 3; ++d) {
+    const auto f = static_cast<std::size_t>(field_index(header, axes[d]));
+    result.cloud.points.col(d) = column(table, header.fields[f], f);
+    if (!has_normals) continue;
+    const auto n = static_cast<std::size_t>(field_index(header, normal_axes[d]));
+    result.cloud.normals.col(d) = column(table, header.fields[n], n);
+  }
+  for (std::size_t f = 0; f < header.fields.size(); ++f) {
+    const PcdField& field = header.fields[f];
+    const std::string& name = field.name;
+    const bool geometry =
+        name == "x" || name == "y" || name == "z" || (has_normals && name.rfind("normal_", 0) == 0);
+    if (geometry || field.count != 1 || name == "_") continue;
+    if (name == "rgb" || name == "rgba") {
+      if (field.size == 4) unpack_colour(table, f, result.attributes);
+    } else if (field.type == 'F' || (field.type == 'U' && field.size == 4)) {
+      result.attributes.reals[name] = column(table, field, f);
+    } else {
+      result.attributes.integers[name] = column(table, field, f).cast<int>();
+    }
+  }
+  return result;
+}
+
 }  // namespace
 
 CloudFile read_pcd(const std::filesystem::path& path, std::uint64_t file_size) {
-  silence_pcl();
   const std::string file = path.string();
   std::ifstream in(path, std::ios::binary);
+  if (!in) throw InputError("cannot open " + file + " for reading");
   const PcdHeader header = read_checked_pcd_header(in, file_size, file);
-  pcl::PCLPointCloud2 blob;
-  if (pcl::PCDReader().read(file, blob) < 0) throw InputError("cannot read PCD file " + file);
-  check_blob(blob, file);
-  // PCL parses the header again, its own way: it must agree with partreg's reading of it.
-  const std::uint64_t points = static_cast<std::uint64_t>(blob.width) * blob.height;
-  if (points != header.points)
-    throw InputError("PCD file " + file + ": PCL read " + std::to_string(points) + " points where its header declares " +
-                     std::to_string(header.points));
-  if (points == 0) throw InputError(file + " holds no points");
-  const pcl::PCLPointField* axes[3] = {find_field(blob, "x"), find_field(blob, "y"), find_field(blob, "z")};
-  if (!axes[0] || !axes[1] || !axes[2]) throw InputError("PCD file " + file + " has no x, y, z fields");
-  CloudFile result;
-  result.cloud.points.resize(static_cast<Eigen::Index>(blob.width) * blob.height, 3);
-  for (int d = 0; d < 3; ++d) result.cloud.points.col(d) = column(blob, *axes[d]);
-  const pcl::PCLPointField* normals[3] = {find_field(blob, "normal_x"), find_field(blob, "normal_y"),
-                                          find_field(blob, "normal_z")};
-  if (normals[0] && normals[1] && normals[2]) {
-    result.cloud.normals.resize(result.cloud.points.rows(), 3);
-    for (int d = 0; d < 3; ++d) result.cloud.normals.col(d) = column(blob, *normals[d]);
-  }
-  for (const auto& field : blob.fields) {
-    const std::string& name = field.name;
-    const bool geometry = name == "x" || name == "y" || name == "z" || (normals[0] && normals[1] && normals[2] &&
-                                                                         name.rfind("normal_", 0) == 0);
-    if (geometry || field.count != 1 || name == "_") continue;
-    if (name == "rgb" || name == "rgba")
-      unpack_colour(blob, field, result.attributes);
-    else if (is_integer(field))
-      result.attributes.integers[name] = column(blob, field).cast<int>();
-    else
-      result.attributes.reals[name] = column(blob, field);
-  }
-  return result;
+  if (header.points == 0) throw InputError(file + " holds no points");
+  for (const char* axis : {"x", "y", "z"})
+    if (header.fields[static_cast<std::size_t>(field_index(header, axis))].count != 1)
+      throw InputError("PCD file " + file + ": field '" + axis + "' must hold one value per point");
+  const PointTable table =
+      header.data == PcdHeader::Data::ascii ? read_ascii(in, header, file) : read_binary(in, header, file);
+  return cloud_from_table(table, header);
 }
 
 void write_pcd(std::ostream& out, const core::Cloud& cloud, const PointAttributes& attributes) {

@@ -1,5 +1,6 @@
 #pragma once
-// PCD files through PCL, kept in one translation unit (internal to partreg_io): PCL's headers are slow.
+// PCD files (internal to partreg_io): read by partreg's own validated reader; written with a header PCL
+// generates, kept in this one translation unit because PCL's headers are slow.
 
 #include <filesystem>
 #include <ostream>

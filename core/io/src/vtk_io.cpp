@@ -17,6 +17,7 @@
 
 #include <mutex>
 
+#include "markup_checks.hpp"
 #include "partreg/core/errors.hpp"
 #include "partreg/io/read_limits.hpp"
 
@@ -85,10 +86,15 @@ PolyData read_vtp(const std::filesystem::path& path) {
   silence_vtk();
   const std::string file = path.string();
   checked_input_size(path);
+  check_vtp(path);  // nesting and declared counts, before VTK's recursive parser allocates
   vtkNew<vtkXMLPolyDataReader> reader;
   if (!reader->CanReadFile(file.c_str())) throw InputError(file + " is not a VTK PolyData (.vtp) file");
   reader->SetFileName(file.c_str());
-  reader->Update();
+  try {
+    reader->Update();
+  } catch (const std::bad_alloc&) {
+    throw InputError(file + ": VTK ran out of memory reading it (counts larger than the file holds?)");
+  }
   vtkPolyData* poly = reader->GetOutput();
   if (reader->GetErrorCode() != 0 || !poly || !poly->GetPoints())
     throw InputError("cannot read VTK PolyData file " + file);

@@ -5,6 +5,7 @@
 #include <sstream>
 
 #include "partreg/core/errors.hpp"
+#include "partreg/io/read_limits.hpp"
 #include "partreg/ui/executor.hpp"
 
 namespace partreg::ui {
@@ -116,6 +117,7 @@ std::vector<Command> parse_script(const std::string& text) {
 }
 
 std::vector<Command> read_script(const std::filesystem::path& path) {
+  io::checked_input_size(path, io::kReadBudget.max_document_bytes);  // a regular file (not a FIFO)
   std::ifstream file(path);
   if (!file) throw InputError("cannot read the script " + path.string());
   std::ostringstream text;

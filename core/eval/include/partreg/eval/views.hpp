@@ -21,11 +21,22 @@ std::vector<Eigen::Vector3d> sphere_directions(int count);
 
 /// The depth camera.
 struct CameraSettings {
-  int width = 160;            ///< pixels
-  int height = 120;           ///< pixels
-  double fov_degrees = 45.0;  ///< vertical field of view
+  int width = 160;            ///< pixels, 1 to kMaxPixelsPerSide
+  int height = 120;           ///< pixels, 1 to kMaxPixelsPerSide
+  double fov_degrees = 45.0;  ///< vertical field of view, kMinFovDegrees to kMaxFovDegrees
   double margin = 1.1;        ///< the object's bounding sphere fills 1 / margin of the vertical field of view
+                              ///< (1 to kMaxMargin)
+
+  // A field of view of 1e-300 degrees puts the camera 1e300 object sizes away, where Embree asserts: the
+  // range below keeps it within 1e4 object sizes, as any real depth camera is.
+  static constexpr double kMinFovDegrees = 0.01;
+  static constexpr double kMaxFovDegrees = 179.0;
+  static constexpr double kMaxMargin = 100.0;
+  static constexpr int kMaxPixelsPerSide = 8192;
 };
+
+/// UsageError (one line naming the setting) for a camera outside the ranges CameraSettings declares.
+void check_camera(const CameraSettings& camera);
 
 /// One partial view, in the object's frame and units.
 struct View {

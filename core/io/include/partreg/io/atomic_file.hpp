@@ -4,7 +4,8 @@
 /// temporary name in its folder (".NAME.partial-PID-N") and renamed into place, so a failure or a crash never
 /// leaves a half-written output behind; temporaries of killed runs are removed on the next write to the same
 /// place. A device, a FIFO or "-" (stdout) is written directly: renaming over /dev/null would replace the
-/// device. A symbolic link is followed to the file it names.
+/// device. A symbolic link is followed to the file it names. A FIFO is written once a process reads it: after
+/// kFifoReaderWaitSeconds without one, the write fails with an InputError instead of blocking forever.
 
 #include <filesystem>
 #include <functional>
@@ -17,6 +18,9 @@ struct OutputTarget {
   std::filesystem::path path;  ///< the file to write: symbolic links followed, "-" as /dev/stdout
   bool direct = false;         ///< true for a device, FIFO or stdout: written in place, never renamed over
 };
+
+/// How long a write to a FIFO waits for a process that reads it (seconds).
+inline constexpr int kFifoReaderWaitSeconds = 10;
 
 /// Resolves `destination` as write_atomically does. InputError naming it for a folder, a missing parent
 /// folder or a loop of symbolic links; so commands call it on every output before they start.

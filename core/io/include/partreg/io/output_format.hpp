@@ -14,6 +14,7 @@
 
 #include <filesystem>
 #include <string>
+#include <vector>
 
 namespace partreg::io {
 
@@ -28,6 +29,17 @@ FileFormat output_format(const std::filesystem::path& path, OutputKind kind, con
 /// Checks one output before any work: its format (UsageError) and that it can be written (its folder
 /// exists, it is not a folder: InputError). Empty paths (an output not asked for) pass.
 void check_output(const std::string& path, OutputKind kind, const std::string& option);
+
+/// One output of a command: its option ("--json") and path ("" when not asked for).
+struct NamedOutput {
+  std::string option;
+  std::string path;
+};
+
+/// UsageError naming both options when two outputs of one command lead to the same file (after "-" and
+/// /dev/stdout, "..", and symbolic links): one would overwrite or interleave the other. /dev/null and other
+/// devices that discard may be named twice.
+void check_distinct_outputs(const std::vector<NamedOutput>& outputs);
 
 /// The name of a format for messages ("PLY", "PCD", ...).
 std::string to_string(FileFormat format);
