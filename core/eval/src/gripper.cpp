@@ -1,6 +1,8 @@
 // The gripper test, grasp sampling and re-seating (gripper.hpp): fingers closed by rays cast with Embree.
 #include "partreg/eval/gripper.hpp"
 
+#include "embree_mesh.hpp"
+
 #include <embree3/rtcore.h>
 
 #include <algorithm>
@@ -52,14 +54,7 @@ MeshRays::MeshRays(const core::Mesh& mesh) : scene_(std::make_unique<Scene>()) {
   scene_->device = rtcNewDevice(config.c_str());
   if (!scene_->device) throw std::runtime_error("Embree could not create a device");
   scene_->scene = rtcNewScene(scene_->device);
-  RTCGeometry geometry = rtcNewGeometry(scene_->device, RTC_GEOMETRY_TYPE_TRIANGLE);
-  auto* vertices = static_cast<float*>(rtcSetNewGeometryBuffer(
-      geometry, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, 3 * sizeof(float), mesh.vertices.rows()));
-  auto* indices = static_cast<unsigned*>(rtcSetNewGeometryBuffer(
-      geometry, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, 3 * sizeof(unsigned), mesh.faces.rows()));
-  for (Eigen::Index i = 0; i < mesh.vertices.size(); ++i)
-    vertices[i] = static_cast<float>(mesh.vertices.data()[i]);
-  for (Eigen::Index i = 0; i < mesh.faces.size(); ++i) indices[i] = static_cast<unsigned>(mesh.faces.data()[i]);
+  RTCGeometry geometry = detail::triangle_geometry(scene_->device, mesh);
   rtcCommitGeometry(geometry);
   rtcAttachGeometry(scene_->scene, geometry);
   rtcReleaseGeometry(geometry);

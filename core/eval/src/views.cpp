@@ -1,5 +1,7 @@
 #include "partreg/eval/views.hpp"
 
+#include "embree_mesh.hpp"
+
 #include <embree3/rtcore.h>
 
 #include <Eigen/Geometry>
@@ -115,15 +117,7 @@ struct ViewCaster::Scene {
 ViewCaster::ViewCaster(const core::Mesh& mesh) {
   if (mesh.faces.rows() == 0) throw InputError("cannot cast views of a mesh without faces");
   scene_ = std::make_unique<Scene>(mesh.vertices);
-  RTCGeometry geometry = rtcNewGeometry(scene_->device, RTC_GEOMETRY_TYPE_TRIANGLE);
-  auto* vertices = static_cast<float*>(rtcSetNewGeometryBuffer(
-      geometry, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, 3 * sizeof(float), mesh.vertices.rows()));
-  auto* indices = static_cast<unsigned*>(rtcSetNewGeometryBuffer(
-      geometry, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, 3 * sizeof(unsigned), mesh.faces.rows()));
-  for (Eigen::Index i = 0; i < mesh.vertices.size(); ++i)
-    vertices[i] = static_cast<float>(mesh.vertices.data()[i]);
-  for (Eigen::Index i = 0; i < mesh.faces.size(); ++i)
-    indices[i] = static_cast<unsigned>(mesh.faces.data()[i]);
+  RTCGeometry geometry = detail::triangle_geometry(scene_->device, mesh);
   scene_->attach(geometry);
 }
 
