@@ -70,7 +70,7 @@ GraspScore score_grasps(const MeshRays& true_mesh, const core::KdTree& truth, do
 void add_frame_errors(GraspScore& score, const core::CategoryModel& model,
                       const std::vector<core::Grasp>& canonical, const std::vector<core::Grasp>& carried,
                       const core::Points& truth_of_row, const core::Gripper& gripper) {
-  const double radius = std::max(core::kFrameRegionRadius, 0.5 * gripper.pad_size / model.normalization.scale);
+  const double radius = core::grasp_region_radius(model, gripper);
   std::vector<core::Points> anchors;
   for (const core::Grasp& grasp : canonical) {
     core::Points contacts(2, 3);

@@ -271,7 +271,8 @@ std::vector<core::Grasp> reseat_grasps(const MeshRays& believed, const core::Poi
   core::validate(gripper);
   std::vector<core::Grasp> seated;
   seated.reserve(grasps.size());
-  for (core::Grasp grasp : grasps) {
+  for (const core::Grasp& carried : grasps) {
+    core::Grasp grasp = carried;
     GraspCheck check = check_grasp(believed, grasp, gripper);
     if (check.touched[0] && check.touched[1]) {
       const Eigen::Vector3d mean_normal = (check.normals[1] - check.normals[0]).normalized();
@@ -294,6 +295,12 @@ std::vector<core::Grasp> reseat_grasps(const MeshRays& believed, const core::Poi
       grasp.width = *contact[1] - *contact[0];
     }
     grasp.quality = grasp_quality(check_grasp(believed, grasp, gripper), gripper);
+    // The move is kept only where the believed object holds the grasp at least as well after it.
+    const double carried_quality = grasp_quality(check_grasp(believed, carried, gripper), gripper);
+    if (carried_quality > grasp.quality) {
+      grasp = carried;
+      grasp.quality = carried_quality;
+    }
     seated.push_back(grasp);
   }
   rank(seated);

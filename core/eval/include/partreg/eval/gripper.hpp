@@ -78,8 +78,9 @@ std::vector<core::Grasp> sample_grasps(const core::Mesh& mesh, const core::Gripp
 /// grasp's closing axis; the closing axis is turned to the mean of the two contact normals (antipodal there),
 /// and the grasp's origin and width are moved to the contacts; then the observed points under each pad (within
 /// half a pad of the closing line, the outermost on each side), when at least 3 per pad, move the contacts
-/// to where the sensor saw the surface. Each grasp gets its quality on the believed mesh; the list comes
-/// back ranked by quality (stable).
+/// to where the sensor saw the surface. A grasp the believed mesh holds less well after the move keeps its
+/// carried pose. Each grasp gets its quality on the believed mesh; the list comes back ranked by quality
+/// (stable).
 std::vector<core::Grasp> reseat_grasps(const MeshRays& believed, const core::Points* observed,
                                        const std::vector<core::Grasp>& grasps, const core::Gripper& gripper);
 
