@@ -20,6 +20,8 @@
 #include "partreg/io/model_file.hpp"
 #include "support/temp_dir.hpp"
 
+#include "../support/refusals.hpp"
+
 namespace partreg::io {
 namespace {
 
@@ -30,17 +32,8 @@ class Hardened : public ::testing::Test {
     std::ofstream(dir / name, std::ios::binary) << bytes;
     return dir / name;
   }
-  // `read` must throw InputError whose message names the file and contains `words`.
-  void expect_refused(const std::function<void()>& read, const std::string& name, const std::string& words) {
-    try {
-      read();
-      ADD_FAILURE() << name << " was accepted";
-    } catch (const InputError& error) {
-      const std::string what = error.what();
-      EXPECT_NE(what.find(name), std::string::npos) << what;
-      EXPECT_NE(what.find(words), std::string::npos) << words << " not in: " << what;
-      EXPECT_EQ(what.find('\n'), std::string::npos) << "one line: " << what;
-    }
+  static void expect_refused(const std::function<void()>& read, const std::string& name, const std::string& words) {
+    testing::expect_refused(read, name, words);
   }
   void expect_cloud_refused(const std::string& name, const std::string& bytes, const std::string& words) {
     const auto path = write(name, bytes);

@@ -21,6 +21,8 @@
 #include "partreg/io/output_format.hpp"
 #include "support/temp_dir.hpp"
 
+#include "../support/refusals.hpp"
+
 namespace partreg::io {
 namespace {
 
@@ -36,18 +38,8 @@ class Untrusted : public ::testing::Test {
     EXPECT_EQ(::mkfifo((dir / name).c_str(), 0600), 0);
     return dir / name;
   }
-  // `read` must throw InputError naming `name` and holding `words`, on one line.
-  static void expect_refused(const std::function<void()>& read, const std::string& name,
-                             const std::string& words) {
-    try {
-      read();
-      ADD_FAILURE() << name << " was accepted";
-    } catch (const InputError& error) {
-      const std::string what = error.what();
-      EXPECT_NE(what.find(name), std::string::npos) << what;
-      EXPECT_NE(what.find(words), std::string::npos) << words << " not in: " << what;
-      EXPECT_EQ(what.find('\n'), std::string::npos) << "one line: " << what;
-    }
+  static void expect_refused(const std::function<void()>& read, const std::string& name, const std::string& words) {
+    testing::expect_refused(read, name, words);
   }
 };
 

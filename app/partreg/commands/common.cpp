@@ -73,6 +73,19 @@ nlohmann::json spaces_json(const core::CategoryModel& model) {
   return spaces;
 }
 
+std::optional<std::vector<double>> parse_numbers(const std::string& text) {
+  std::vector<double> values;
+  std::istringstream in(text);
+  for (std::string field; std::getline(in, field, ',');) {
+    std::istringstream number(field);
+    double x = 0;
+    number >> x;
+    if (!number || !number.eof() || !std::isfinite(x)) return std::nullopt;
+    values.push_back(x);
+  }
+  return values;
+}
+
 std::pair<int, int> parse_size(const std::string& text, const std::string& option) {
   std::stringstream in(text);
   long long width = 0, height = 0;

@@ -7,9 +7,11 @@
 #include <cstdint>
 #include <filesystem>
 #include <nlohmann/json.hpp>
+#include <optional>
 #include <set>
 #include <string>
 #include <utility>
+#include <vector>
 
 #include "partreg/core/category_model.hpp"
 #include "partreg/core/types.hpp"
@@ -45,6 +47,9 @@ inline constexpr const char* kLabelsHelp =
     "labels files, one per labelled instance (--labels a.json b.json, or repeated): each gives its instance "
     "its parts, which it trains on and, in eval, is scored against; the first file's instance is the "
     "canonical unless --canonical names another of them";
+
+/// "0.3,-1,2" -> {0.3, -1, 2}; empty when any field is not a finite number (the caller names the option).
+std::optional<std::vector<double>> parse_numbers(const std::string& text);
 
 /// "1280x960" -> {1280, 960}; UsageError naming `option` for anything else or a side below 1 pixel.
 std::pair<int, int> parse_size(const std::string& text, const std::string& option);

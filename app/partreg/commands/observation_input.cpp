@@ -12,20 +12,6 @@
 namespace partreg::app {
 namespace {
 
-std::vector<double> numbers(const std::string& text) {
-  std::vector<double> out;
-  std::istringstream in(text);
-  std::string field;
-  while (std::getline(in, field, ',')) {
-    std::istringstream number(field);
-    double x = 0;
-    number >> x;
-    if (!number || !number.eof() || !std::isfinite(x)) return {};
-    out.push_back(x);
-  }
-  return out;
-}
-
 void log_cut(const scene::SceneCut& cut) {
   std::cerr << "support plane: normal (" << cut.up.transpose() << ") towards the camera, " << cut.plane[3]
             << " m from it, " << cut.plane_points.rows() << " points; " << cut.outliers_removed
@@ -67,7 +53,7 @@ void add_observation_flags(CLI::App* command, ObservationInput& input, bool with
 scene::Pick parse_pick(const std::string& text) {
   scene::Pick pick;
   if (text.empty()) return pick;
-  const std::vector<double> values = numbers(text);
+  const std::vector<double> values = parse_numbers(text).value_or(std::vector<double>{});
   if (values.size() == 2)
     pick.pixel = Eigen::Vector2d(values[0], values[1]);
   else if (values.size() == 3)

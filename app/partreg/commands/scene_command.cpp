@@ -26,17 +26,9 @@ struct SceneOptions {
 };
 
 std::vector<double> list_of(const std::string& text, const std::string& option) {
-  std::vector<double> out;
-  std::istringstream in(text);
-  std::string field;
-  while (std::getline(in, field, ',')) {
-    std::istringstream number(field);
-    double x = 0;
-    number >> x;
-    if (!number || !number.eof() || !std::isfinite(x)) throw UsageError(option + ": '" + text + "' is not a list of numbers");
-    out.push_back(x);
-  }
-  return out;
+  const std::optional<std::vector<double>> values = parse_numbers(text);
+  if (!values) throw UsageError(option + ": '" + text + "' is not a list of numbers");
+  return *values;
 }
 
 std::vector<scene::TableObject> read_objects(const SceneOptions& options) {
