@@ -137,17 +137,19 @@ Eigen::VectorXd to_vector(const py::handle& object, const std::string& what) {
 }
 
 Eigen::MatrixXd to_matrix(const py::handle& object, long rows, long cols, const std::string& what) {
-  if (!py::isinstance<py::array>(object))
-    throw UsageError(what + " must be a numpy array of shape (" + std::to_string(rows) + ", " +
-                     std::to_string(cols) + ")");
-  const py::array array = py::reinterpret_borrow<py::array>(object);
-  if (!holds<double>(array))
-    throw UsageError(what + " must be float64, not " + std::string(py::str(array.dtype())));
+  const std::string shape = "(" + std::to_string(rows) + (cols == 1 ? ",)" : ", " + std::to_string(cols) + ")");
+  // Small and read once: any real numbers (a list, float32, a numpy view) are taken as float64.
+  py::array array;
+  try {
+    array = py::module_::import("numpy").attr("asarray")(object, "float64");
+  } catch (const py::error_already_set&) {
+    throw UsageError(what + " must be real numbers of shape " + shape + ", not " +
+                     std::string(py::str(object.get_type().attr("__name__"))));
+  }
   const bool is_vector = cols == 1 && array.ndim() == 1 && array.shape(0) == rows;
   const bool is_matrix = array.ndim() == 2 && array.shape(0) == rows && array.shape(1) == cols;
   if (!is_vector && !is_matrix)
-    throw UsageError(what + " must have shape (" + std::to_string(rows) +
-                     (cols == 1 ? ",)" : ", " + std::to_string(cols) + ")") + ", not " + shape_text(array));
+    throw UsageError(what + " must have shape " + shape + ", not " + shape_text(array));
   // Small: element access handles any strides.
   const auto typed = py::array_t<double>::ensure(array);
   Eigen::MatrixXd matrix(rows, cols);

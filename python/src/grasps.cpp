@@ -55,12 +55,7 @@ void bind_classes(py::module_& m) {
       .def_readonly("pad_size", &core::Gripper::pad_size)
       .def_readonly("finger_depth", &core::Gripper::finger_depth)
       .def_readonly("friction", &core::Gripper::friction)
-      .def_readonly("relative_to_diagonal", &core::Gripper::relative)
-      .def("__repr__", [](const core::Gripper& g) {
-        return "<partreg.Gripper aperture " + std::to_string(g.max_aperture) + ", pad " + std::to_string(g.pad_size) +
-               ", depth " + std::to_string(g.finger_depth) + ", mu " + std::to_string(g.friction) +
-               (g.relative ? " (fractions of the diagonal)>" : ">");
-      });
+      .def_readonly("relative_to_diagonal", &core::Gripper::relative);
   py::class_<core::Grasp>(m, "Grasp", "A parallel-jaw grasp: x closing axis, z approach (docs/grasps.md).")
       .def(py::init([](const std::string& name, py::handle position, py::handle rotation, double width,
                        const std::string& part, double quality) {
@@ -77,11 +72,7 @@ void bind_classes(py::module_& m) {
       .def_readonly("width", &core::Grasp::width)
       .def_readonly("quality", &core::Grasp::quality)
       .def_property_readonly("position", [](const core::Grasp& g) { return copy_vector(g.position); })
-      .def_property_readonly("rotation", [](const core::Grasp& g) { return copy_matrix(g.rotation); })
-      .def("__repr__", [](const core::Grasp& g) {
-        return "<partreg.Grasp " + g.name + (g.part.empty() ? "" : " on " + g.part) + ", width " +
-               std::to_string(g.width) + ", quality " + std::to_string(g.quality) + ">";
-      });
+      .def_property_readonly("rotation", [](const core::Grasp& g) { return copy_matrix(g.rotation); });
 }
 
 }  // namespace

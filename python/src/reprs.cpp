@@ -8,6 +8,7 @@
 #include "partreg/core/category_model.hpp"
 #include "partreg/core/cpd.hpp"
 #include "partreg/core/deformation.hpp"
+#include "partreg/core/grasp.hpp"
 #include "partreg/core/registration.hpp"
 #include "partreg/eval/views.hpp"
 
@@ -102,6 +103,14 @@ void bind_reprs(py::module_& m) {
   });
   set_repr<eval::View>(m, "View", [](const eval::View& s) {
     return std::to_string(s.points.rows()) + " points from " + vector_text(s.viewpoint);
+  });
+  set_repr<core::Gripper>(m, "Gripper", [](const core::Gripper& g) {
+    return "aperture " + number(g.max_aperture) + ", pad " + number(g.pad_size) + ", depth " +
+           number(g.finger_depth) + ", mu " + number(g.friction) + (g.relative ? " (fractions of the diagonal)" : "");
+  });
+  set_repr<core::Grasp>(m, "Grasp", [](const core::Grasp& g) {
+    return g.name + (g.part.empty() ? "" : " on " + g.part) + " at " + vector_text(g.position) + ", width " +
+           number(g.width) + ", quality " + number(g.quality);
   });
   registration_reprs(m);
   cpd_reprs(m);

@@ -462,6 +462,9 @@ def test_every_type_prints_what_it_holds(partreg, model, registered):
         "AffineCpdResult": (partreg.cpd(source, target, mode="affine"), "300 points"),
         "NonrigidCpdResult": (partreg.cpd(source, target, max_iterations=5), "5 iterations"),
         "View": (partreg.views(source, count=12)[0], "points from ["),
+        "Gripper": (partreg.Gripper(0.35, relative_to_diagonal=True), "aperture 0.35, pad"),
+        "Grasp": (partreg.Grasp("pinch", [1.0, 2.0, 3.0], np.eye(3), 0.05, part="handle"),
+                  "pinch on handle at [1, 2, 3], width 0.05"),
     }
     classes = {name for name in dir(partreg) if isinstance(getattr(partreg, name), type)
                and not issubclass(getattr(partreg, name), Exception)}
