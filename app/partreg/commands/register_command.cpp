@@ -33,6 +33,7 @@ struct RegisterOptions {
   std::size_t mesh_samples = 3000;
   int threads = 0;
   core::RegistrationSettings settings;
+  std::string fail_on;  ///< empty, or the verdict at which the command exits 3
 };
 
 void write_outputs(const core::CategoryModel& model, const core::RegistrationResult& result,
@@ -131,6 +132,21 @@ nlohmann::json truth_errors(const core::CategoryModel& model, const core::Points
   return json;
 }
 
+// The verdict closes the command's output (its last line on stderr), after every output was written; exit 3
+// when it is at least as bad as --fail-on asks.
+void report_verdict(const core::RegistrationResult& result, const RegisterOptions& options) {
+  const core::TrustFigures& f = result.figures;
+  for (const std::string& reason : result.assessment.reasons) std::cerr << "  " << reason << '\n';
+  const std::string verdict = core::enum_name(result.assessment.verdict);
+  std::cerr << "verdict: " << verdict << " (" << 100.0 * f.inlier_share << "% of the observed points within "
+            << 100.0 * options.settings.verdict.inlier_distance << "% of the diagonal of the model, RMS "
+            << 100.0 * f.observed_rms << "%; latent " << f.latent_distance << " sd; pose ambiguity "
+            << f.pose_ambiguity << "; largest seam gap " << 100.0 * f.seam_gap_max << "%; stretch "
+            << f.mesh_stretch << "x; scale " << f.scale << ")\n";
+  if (!options.fail_on.empty() && result.assessment.verdict >= core::parse_enum<core::Verdict>(options.fail_on))
+    throw RejectedResult("the verdict is " + verdict + " (--fail-on " + options.fail_on + ")");
+}
+
 // Every output is checked before any work: a bad name never leaves the outputs written before it.
 void check_register_outputs(const RegisterOptions& options) {
   io::check_output(options.points_out, io::OutputKind::cloud, "--points-out");
@@ -185,13 +201,14 @@ void run_register(const RegisterOptions& options) {
   }
   if (model.canonical_mesh.faces.rows() > 0) {
     // How evenly the mesh came through: the largest edge stretch of the deformed canonical mesh.
-    const double stretch = core::mesh_stretch(model, result);
+    const double stretch = result.figures.mesh_stretch;
     std::cerr << "mesh stretch: largest edge " << stretch << "x its canonical length\n";
     report["mesh_stretch"] = stretch;
   }
   if (!options.truth_path.empty()) report["truth"] = truth_errors(model, observed, result, options);
   write_outputs(model, result, frames, options);
   write_json_or_stdout(report, options.json_path);
+  report_verdict(result, options);
 }
 
 }  // namespace
@@ -210,6 +227,8 @@ void add_register_command(CLI::App& app) {
   command->add_option("--frames", o->frames_path, "frames attached to the canonical (JSON)");
   command->add_option("--frames-out", o->frames_out, "where the transferred frames go");
   add_registration_flags(command, o->settings);
+  command->add_option("--fail-on", o->fail_on, "exit 3 when the result's verdict is at least this bad")
+      ->check(CLI::IsMember({"doubtful", "failed"}));
   add_threads_flag(command, o->threads);
   command->add_option(
       "--truth", o->truth_path,

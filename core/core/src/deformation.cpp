@@ -108,9 +108,8 @@ Mesh deform_mesh(const CategoryModel& model, const RegistrationResult& result, c
 
 double mesh_stretch(const CategoryModel& model, const RegistrationResult& result) {
   if (model.canonical_mesh.faces.rows() == 0) return 0.0;
-  // The canonical mesh is in normalised units, the deformed one in data units.
-  return max_edge_stretch(model.canonical_mesh,
-                          deform_mesh(model, result).vertices / model.normalization.scale);
+  // The canonical mesh is in normalised units, the deformed one in observation units.
+  return max_edge_stretch(model.canonical_mesh, deform_mesh(model, result).vertices / model.observed_diagonal());
 }
 
 SeamGap seam_gap(const CategoryModel& model, const RegistrationResult& result, double radius) {
@@ -132,7 +131,7 @@ SeamGap seam_gap(const CategoryModel& model, const RegistrationResult& result, d
       if (boundary.empty()) continue;
       const Points z = select_rows(own_points, boundary);
       const Eigen::VectorXd distance =
-          (moved_by(model, own, z) - moved_by(model, other, z)).rowwise().norm() / model.normalization.scale;
+          (moved_by(model, own, z) - moved_by(model, other, z)).rowwise().norm() / model.observed_diagonal();
       gap.max = std::max(gap.max, distance.maxCoeff());
       total += distance.sum();
       gap.points += static_cast<int>(distance.size());
@@ -178,7 +177,8 @@ std::vector<Frame> transfer_frames(const CategoryModel& model, const Registratio
     const Eigen::Matrix3d jacobian =
         Eigen::Matrix3d::Identity() + kernel_field_jacobian(normalised.row(0).transpose(), space.canonical,
                                                             space.weights(fit.latent), space.beta);
-    const Eigen::Matrix3d pose_rotation = fit.T_observed_canonical.topLeftCorner<3, 3>() / fit.scale;
+    // The pose's rotation without its scale (the fitted one, and a model's real size's).
+    const Eigen::Matrix3d pose_rotation = nearest_rotation(fit.T_observed_canonical.topLeftCorner<3, 3>());
     // The refinement turns the frame by its own Jacobian where the space put it, after the pose.
     const Eigen::Vector3d by_space = moved_by(model, fit, normalised).row(0).transpose();
     const Eigen::Matrix3d refinement = Eigen::Matrix3d::Identity() + result.refinement.jacobian_at(by_space);

@@ -237,7 +237,9 @@ void run_job(const EvalInput& input, const EvalSettings& settings, const FoldCon
                                              truth_has_parts ? &test.truth.part : nullptr),
                  results[v].seconds);
     if (variants[v] != core::Variant::holistic) rows[v].seam = core::seam_gap(model, results[v]);
-    if (model.canonical_mesh.faces.rows() > 0) rows[v].mesh_stretch = core::mesh_stretch(model, results[v]);
+    if (model.canonical_mesh.faces.rows() > 0) rows[v].mesh_stretch = results[v].figures.mesh_stretch;
+    rows[v].figures = results[v].figures;
+    rows[v].verdict = results[v].assessment.verdict;
   }
   if (!settings.baselines) return;
   // The full view's sample is independent of the truth's (for cloud data it is the truth itself).
@@ -293,6 +295,8 @@ std::vector<std::string> tested_instances(const EvalInput& input, const EvalSett
     throw UsageError("a fold count of " + std::to_string(protocol.folds) + " for " +
                      std::to_string(input.instances.size()) +
                      " instances: it must be 0 (leave-one-out) or between 2 and the instance count");
+  if (settings.training.size > 0.0)
+    throw UsageError("eval observes the category's own files in their own units: --size has no place there");
   if (settings.shard_count < 1 || settings.shard < 0 || settings.shard >= settings.shard_count)
     throw UsageError("shard index " + std::to_string(settings.shard) + " with a shard count of " +
                      std::to_string(settings.shard_count) +

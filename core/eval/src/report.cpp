@@ -12,13 +12,14 @@
 #include "partreg/core/errors.hpp"
 #include "partreg/core/registration_settings.hpp"
 #include "partreg/eval/baselines.hpp"
+#include "partreg/eval/verdict_report.hpp"
 
 namespace partreg::eval {
 namespace {
 
 // The first line names the layout's version (raised when a column changes meaning); the second the columns.
 // Each format added columns at the end: 3 the two seam-gap columns, 4 the own-part figures, 5 the mesh
-// stretch. Files of the earlier formats are still read (their missing figures stay empty).
+// stretch, 6 the verdict and the truth-free figures it was judged by. Files of the earlier formats are still read (their missing figures stay empty).
 #define PARTREG_FORMAT_2_COLUMNS                                                                      \
   "category,instance,canonical,fold,variant,view,direction_x,direction_y,direction_z,perturbation,"   \
   "level_index,paper_level,level,diagonal,observed_points,eq5,eq5_per_diagonal2,reverse_eq5,"         \
@@ -32,14 +33,19 @@ struct CsvFormat {
   const char* header;
   std::size_t columns;
 };
-constexpr std::size_t kFormat2Columns = 24, kFormat3Columns = 26, kFormat4Columns = 28;
+#define PARTREG_FORMAT_5_COLUMNS PARTREG_FORMAT_4_COLUMNS ",mesh_stretch_max"
+constexpr std::size_t kFormat2Columns = 24, kFormat3Columns = 26, kFormat4Columns = 28, kFormat5Columns = 29;
 // The format written first, then the older ones read.
 constexpr CsvFormat kFormats[] = {
-    {"# partreg evaluation rows, format 5", PARTREG_FORMAT_4_COLUMNS ",mesh_stretch_max",
-     kFormat4Columns + 1},
+    {"# partreg evaluation rows, format 6",
+     PARTREG_FORMAT_5_COLUMNS ",verdict,inlier_share,observed_rms_per_diagonal,latent_distance,pose_ambiguity,scale,"
+     "refinement_movement",
+     kFormat5Columns + 7},
+    {"# partreg evaluation rows, format 5", PARTREG_FORMAT_5_COLUMNS, kFormat5Columns},
     {"# partreg evaluation rows, format 4", PARTREG_FORMAT_4_COLUMNS, kFormat4Columns},
     {"# partreg evaluation rows, format 3", PARTREG_FORMAT_3_COLUMNS, kFormat3Columns},
     {"# partreg evaluation rows, format 2", PARTREG_FORMAT_2_COLUMNS, kFormat2Columns}};
+#undef PARTREG_FORMAT_5_COLUMNS
 #undef PARTREG_FORMAT_4_COLUMNS
 #undef PARTREG_FORMAT_3_COLUMNS
 #undef PARTREG_FORMAT_2_COLUMNS
@@ -72,6 +78,28 @@ std::vector<std::string> split(const std::string& line) {
   return fields;
 }
 
+// The verdict's columns (format 6): a registration's verdict and figures; empty for a baseline.
+void parse_verdict(EvalRow& row, const std::vector<std::string>& f) {
+  row.verdict = core::parse_enum<core::Verdict>(f[29]);
+  core::TrustFigures figures;
+  figures.inlier_share = std::stod(f[30]), figures.observed_rms = std::stod(f[31]);
+  figures.latent_distance = std::stod(f[32]), figures.pose_ambiguity = std::stod(f[33]);
+  figures.scale = std::stod(f[34]), figures.refinement_movement = std::stod(f[35]);
+  if (row.seam) figures.seam_gap_mean = row.seam->mean, figures.seam_gap_max = row.seam->max;
+  if (row.mesh_stretch) figures.mesh_stretch = *row.mesh_stretch;
+  row.figures = figures;
+}
+
+void write_verdict(std::ostream& out, const EvalRow& r) {
+  if (!r.verdict || !r.figures) {
+    out << ",,,,,,,";
+    return;
+  }
+  const core::TrustFigures& f = *r.figures;
+  out << ',' << core::enum_name(*r.verdict) << ',' << f.inlier_share << ',' << f.observed_rms << ','
+      << f.latent_distance << ',' << f.pose_ambiguity << ',' << f.scale << ',' << f.refinement_movement;
+}
+
 EvalRow parse_row(const std::vector<std::string>& f) {
   EvalRow row;
   row.category = f[0], row.instance = f[1], row.canonical = f[2], row.fold = std::stoi(f[3]);
@@ -97,6 +125,7 @@ EvalRow parse_row(const std::vector<std::string>& f) {
     row.errors.own_part_rms_per_diagonal = parse_parts(f[27]);
   }
   if (f.size() > kFormat4Columns && !f[28].empty()) row.mesh_stretch = std::stod(f[28]);
+  if (f.size() > kFormat5Columns && !f[29].empty()) parse_verdict(row, f);
   return row;
 }
 
@@ -207,6 +236,7 @@ void write_rows_csv(const std::filesystem::path& path, const std::vector<EvalRow
     if (r.errors.own_part_rms_mean_per_diagonal) out << *r.errors.own_part_rms_mean_per_diagonal;
     out << ',' << parts_field(r.errors.own_part_rms_per_diagonal) << ',';
     if (r.mesh_stretch) out << *r.mesh_stretch;
+    write_verdict(out, r);
     out << '\n';
   }
   if (!out.flush()) throw InputError("cannot write " + path.string());
@@ -222,7 +252,7 @@ std::vector<EvalRow> read_rows_csv(const std::filesystem::path& path) {
                                    [&](const CsvFormat& known) { return line == known.line; });
   if (format == std::end(kFormats))
     throw InputError(path.string() + " has another format (" + line.substr(2) + "; this partreg reads " +
-                     std::string(kFormat.line).substr(2) + ", 4, 3 and 2): run the evaluation again");
+                     std::string(kFormat.line).substr(2) + ", 5, 4, 3 and 2): run the evaluation again");
   if (!std::getline(in, line) || line != format->header)
     throw InputError(path.string() + " is not a partreg evaluation CSV (header differs)");
   const std::size_t columns = format->columns;
@@ -578,6 +608,7 @@ std::string markdown_report(const std::vector<EvalRow>& rows) {
   own_part_tables(out, rows);
   seam_tables(out, rows);
   stretch_tables(out, rows);
+  verdict_tables(out, rows);
   sweep_tables(out, rows);
   timing_table(out, rows);
   return out.str();

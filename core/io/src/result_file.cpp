@@ -46,7 +46,29 @@ nlohmann::json mixture_json(const core::MixtureFinish& mixture) {
           {"sigma_normalised", mixture.sigma}};
 }
 
+// A number that may be infinite or unset: JSON has no infinity, so null.
+nlohmann::json finite_or_null(double value) { return std::isfinite(value) ? nlohmann::json(value) : nlohmann::json(); }
+
 }  // namespace
+
+nlohmann::json verdict_json(const core::RegistrationResult& result) {
+  const core::TrustFigures& f = result.figures;
+  return {{"verdict", core::enum_name(result.assessment.verdict)},
+          {"reasons", result.assessment.reasons},
+          {"figures",
+           {{"observed_rms_normalised", f.observed_rms},
+            {"inlier_share", f.inlier_share},
+            {"latent_distance", f.latent_distance},
+            {"refinement_movement_normalised", f.refinement_movement},
+            {"pose_ambiguity", finite_or_null(f.pose_ambiguity)},
+            {"seam_gap_mean_normalised", f.seam_gap_mean},
+            {"seam_gap_max_normalised", f.seam_gap_max},
+            {"mesh_stretch", f.mesh_stretch},
+            {"scale", f.scale},
+            {"scale_at_bound", f.scale_at_bound},
+            {"free_space_violation",
+             f.free_space_violation ? nlohmann::json(*f.free_space_violation) : nlohmann::json()}}}};
+}
 
 nlohmann::json result_json(const core::RegistrationResult& result, const core::RegistrationSettings& settings,
                            const ResultSource& source) {
@@ -62,8 +84,9 @@ nlohmann::json result_json(const core::RegistrationResult& result, const core::R
          {"stop_reason", core::enum_name(fit.stop_reason)},
          {"pose_hypotheses", fit.hypotheses},
          {"selection_score", fit.score},
-         {"runner_up_score",
-          std::isfinite(fit.runner_up_score) ? nlohmann::json(fit.runner_up_score) : nlohmann::json()},
+         {"runner_up_score", finite_or_null(fit.runner_up_score)},
+         {"runner_up_shift_normalised", fit.runner_up_shift},
+         {"latent_distance", fit.latent_distance},
          {"seconds", fit.seconds}});
   nlohmann::json request = nlohmann::json::object();
   for (const auto& [name, value] : core::registration_option_values(settings)) request[name] = value;
@@ -81,6 +104,7 @@ nlohmann::json result_json(const core::RegistrationResult& result, const core::R
             {"strays", result.fit.strays}}},
           {"mixture", mixture_json(result.mixture)},
           {"refinement", refinement_json(result.refinement, settings.refinement)},
+          {"assessment", verdict_json(result)},
           {"seconds", result.seconds}};
 }
 

@@ -93,6 +93,10 @@ struct EvalRow {
   /// (core::mesh_stretch, deformed / canonical edge length, the largest over the edges); empty for the
   /// baselines.
   std::optional<double> mesh_stretch;
+  /// Registrations: what the result said of itself without the truth (core::TrustFigures) and its verdict;
+  /// empty for the baselines. The report sets them against the truth (verdict_report.hpp).
+  std::optional<core::TrustFigures> figures;
+  std::optional<core::Verdict> verdict;
 };
 
 /// Progress (core/progress.hpp): rows done, rows planned, and a line worth logging (empty when there is

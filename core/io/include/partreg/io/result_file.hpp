@@ -31,9 +31,14 @@ struct ResultSource {
 /// steps, stop reason and seconds; the closest-point fit (data units and normalised by the model's diagonal);
 /// what the refinement did (`refinement`: enabled, and when it was, applied, points, observed, centres,
 /// iterations, seconds and the mean and largest movement of the fitted points as a share of the diagonal) and
-/// the total time.
+/// the total time; and `assessment` (verdict_json).
 nlohmann::json result_json(const core::RegistrationResult& result, const core::RegistrationSettings& settings,
                            const ResultSource& source);
+
+/// The result's verdict (`verdict`: good, doubtful or failed), its `reasons` and the truth-free `figures`
+/// it was judged by (verdict.hpp; lengths as fractions of the model's diagonal; an infinite pose ambiguity,
+/// no distinct runner-up, and a free-space share without a depth image are null).
+nlohmann::json verdict_json(const core::RegistrationResult& result);
 
 /// The errors against a ground-truth instance (truth_errors.hpp), keys named as its fields.
 nlohmann::json truth_errors_json(const core::TruthErrors& errors);
