@@ -53,21 +53,24 @@ nlohmann::json finite_or_null(double value) { return std::isfinite(value) ? nloh
 
 nlohmann::json verdict_json(const core::RegistrationResult& result) {
   const core::TrustFigures& f = result.figures;
-  return {{"verdict", core::enum_name(result.assessment.verdict)},
-          {"reasons", result.assessment.reasons},
-          {"figures",
-           {{"observed_rms_normalised", f.observed_rms},
-            {"inlier_share", f.inlier_share},
-            {"latent_distance", f.latent_distance},
-            {"refinement_movement_normalised", f.refinement_movement},
-            {"pose_ambiguity", finite_or_null(f.pose_ambiguity)},
-            {"seam_gap_mean_normalised", f.seam_gap_mean},
-            {"seam_gap_max_normalised", f.seam_gap_max},
-            {"mesh_stretch", f.mesh_stretch},
-            {"scale", f.scale},
-            {"scale_at_bound", f.scale_at_bound},
-            {"free_space_violation",
-             f.free_space_violation ? nlohmann::json(*f.free_space_violation) : nlohmann::json()}}}};
+  nlohmann::json json = nlohmann::json::object();
+  json["verdict"] = core::enum_name(result.assessment.verdict);
+  json["reasons"] = nlohmann::json::array();
+  for (const std::string& reason : result.assessment.reasons) json["reasons"].push_back(reason);
+  nlohmann::json& figures = json["figures"];
+  figures["observed_rms_normalised"] = f.observed_rms;
+  figures["inlier_share"] = f.inlier_share;
+  figures["latent_distance"] = f.latent_distance;
+  figures["refinement_movement_normalised"] = f.refinement_movement;
+  figures["pose_ambiguity"] = finite_or_null(f.pose_ambiguity);
+  figures["seam_gap_mean_normalised"] = f.seam_gap_mean;
+  figures["seam_gap_max_normalised"] = f.seam_gap_max;
+  figures["mesh_stretch"] = f.mesh_stretch;
+  figures["scale"] = f.scale;
+  figures["scale_at_bound"] = f.scale_at_bound;
+  figures["free_space_violation"] =
+      f.free_space_violation ? nlohmann::json(*f.free_space_violation) : nlohmann::json();
+  return json;
 }
 
 nlohmann::json result_json(const core::RegistrationResult& result, const core::RegistrationSettings& settings,
