@@ -504,3 +504,16 @@ def test_type_stub_matches_the_module(partreg):
         for (parameter, stub_default), (_, module_default) in zip(theirs, mine):
             if module_default is not None and stub_default is not None:
                 assert ast.literal_eval(stub_default) == ast.literal_eval(module_default), f"{name}({parameter})"
+
+
+def test_the_verdict_and_its_figures_equal_the_command_lines(partreg, registered, cli_register):
+    assessment = cli_register["assessment"]
+    assert registered.verdict == assessment["verdict"]
+    assert registered.reasons == assessment["reasons"]
+    figures = assessment["figures"]
+    assert registered.figures.inlier_share == pytest.approx(figures["inlier_share"], rel=1e-9)
+    assert registered.figures.observed_rms == pytest.approx(figures["observed_rms_normalised"], rel=1e-9, abs=1e-12)
+    assert registered.figures.latent_distance == pytest.approx(figures["latent_distance"], rel=1e-9)
+    assert 0.0 < registered.figures.inlier_share <= 1.0
+    assert registered.figures.free_space_violation is None  # no depth image
+    assert registered.fits[0].latent_distance == pytest.approx(cli_register["spaces"][0]["latent_distance"], rel=1e-9)
