@@ -15,13 +15,6 @@
 namespace partreg::core {
 namespace {
 
-// The observed points the figures measure leave out those that stand alone, as registration does
-// (SamplingSettings::stray_limit): uniform outliers are the sensor's, not the fit's; a table left in has
-// company and counts. And a point is explained within the inlier distance or within this many times the
-// observation's noise, whichever is larger; the RMS is judged beyond the noise (in quadrature): on the
-// evaluation's noisy views a correct fit read 40% inliers at 0.02 (drills, noise level 3).
-constexpr double kNoiseMultiple = 3.0;
-
 // Surface samples of the deformed canonical mesh: enough that their spacing (about 0.01 of the diagonal on
 // a mug) lies well under the inlier distance.
 constexpr std::size_t kSurfaceSamples = 20000;
@@ -114,7 +107,7 @@ double pose_ambiguity_of(const RegistrationResult& result, const VerdictSettings
 
 std::string number(double value) {
   std::ostringstream out;
-  out.precision(3);
+  out.precision(4);
   out << value;
   return out.str();
 }
@@ -135,7 +128,7 @@ void validate(const VerdictSettings& s) {
   if (!share(s.doubtful_inlier_share) || !share(s.failed_inlier_share) ||
       s.failed_inlier_share > s.doubtful_inlier_share)
     throw UsageError("verdict inlier shares must lie in [0, 1], the failed one below the doubtful one");
-  if (!length(s.inlier_distance) || !length(s.distinct_pose) || !length(s.doubtful_observed_rms) ||
+  if (!length(s.inlier_distance) || !length(s.noise_multiple) || !length(s.distinct_pose) || !length(s.doubtful_observed_rms) ||
       !length(s.failed_observed_rms) || !length(s.doubtful_seam_gap) || !length(s.failed_seam_gap) ||
       s.failed_observed_rms < s.doubtful_observed_rms || s.failed_seam_gap < s.doubtful_seam_gap)
     throw UsageError("verdict lengths must be finite and not negative, the failed ones above the doubtful ones");
@@ -192,6 +185,10 @@ TrustFigures trust_figures(const CategoryModel& model, const Points& observed, c
   const Points sampled =
       select_rows(observed, subsample_indices(observed, static_cast<std::size_t>(settings.sampling.observed_points),
                                               settings.sampling.voxel_size * diagonal));
+  // Left out: the points that stand alone, as registration leaves them (SamplingSettings::stray_limit):
+  // uniform outliers are the sensor's, not the fit's; a table left in has company and counts. A point is
+  // explained within the inlier distance or noise_multiple times the noise, whichever is farther: on the
+  // evaluation's noisy views a correct fit read 40% inliers at 0.02 (drills, noise level 3).
   const Points measured =
       settings.sampling.stray_limit > 0.0
           ? select_rows(sampled, rows_with_neighbours(sampled, 2, settings.sampling.stray_limit))
@@ -203,7 +200,7 @@ TrustFigures trust_figures(const CategoryModel& model, const Points& observed, c
   const double noise = detail::observed_noise(Points(measured / diagonal), Points(result.deformed / diagonal));
   const double rms = std::sqrt(distance.squaredNorm() / static_cast<double>(distance.size()));
   f.observed_rms = std::sqrt(std::max(0.0, rms * rms - noise * noise));
-  const double reach = std::max(settings.verdict.inlier_distance, kNoiseMultiple * noise);
+  const double reach = std::max(settings.verdict.inlier_distance, settings.verdict.noise_multiple * noise);
   f.inlier_share = static_cast<double>((distance.array() <= reach).count()) / static_cast<double>(distance.size());
   f.latent_distance = latent_distance_of(result);
   f.refinement_movement = result.refinement.mean_movement;

@@ -33,11 +33,14 @@ struct EnumNames<Verdict> {
 
 /// The figures a registration reports without the truth. Lengths: fractions of the model's diagonal.
 struct TrustFigures {
-  /// RMS distance from the observed points to the deformed model's surface (the deformed canonical mesh,
-  /// or its points with their normals for a model trained on clouds). Only observed points count: the side
-  /// a partial view did not see costs nothing.
+  /// RMS distance beyond the observation's noise (in quadrature) from the observed points to the deformed
+  /// model's surface (the deformed canonical mesh, or its points with their normals for a model trained on
+  /// clouds). Only observed points count, without those that stand alone (SamplingSettings::stray_limit):
+  /// the side a partial view did not see costs nothing.
   double observed_rms = 0.0;
-  double inlier_share = 0.0;  ///< observed points within VerdictSettings::inlier_distance of that surface
+  /// Those observed points within VerdictSettings::inlier_distance of that surface, or within
+  /// noise_multiple times the observation's noise where that is farther.
+  double inlier_share = 0.0;
   /// The largest Mahalanobis distance of a fitted latent from its space's mean, over the spaces fitted
   /// (training standard deviations; a training instance lies near sqrt(q)).
   double latent_distance = 0.0;
@@ -61,10 +64,11 @@ struct TrustFigures {
 /// A figure past its `doubtful` threshold makes the result doubtful, past its `failed` one failed.
 struct VerdictSettings {
   double inlier_distance = 0.02;     ///< an observed point this close to the surface is explained (diagonal)
-  double doubtful_inlier_share = 0.90;  ///< fewer inliers than this share: doubtful
-  double failed_inlier_share = 0.70;    ///< fewer than this: failed
-  double doubtful_observed_rms = 0.025;  ///< observed-to-model RMS above this (diagonal): doubtful
-  double failed_observed_rms = 0.06;     ///< above this: failed
+  double noise_multiple = 3.0;       ///< ... or this many times the observation's noise, where that is farther
+  double doubtful_inlier_share = 0.85;  ///< fewer inliers than this share: doubtful
+  double failed_inlier_share = 0.60;    ///< fewer than this: failed
+  double doubtful_observed_rms = 0.08;  ///< observed-to-model RMS beyond the noise above this (diagonal): doubtful
+  double failed_observed_rms = 0.15;    ///< above this: failed
   double doubtful_latent_distance = 6.0;  ///< Mahalanobis distance above this (standard deviations): doubtful
   double doubtful_refinement_movement = 0.04;  ///< refinement's mean movement above this (diagonal): doubtful
   double doubtful_pose_ambiguity = 1.05;  ///< a distinct runner-up scoring within this ratio: doubtful
@@ -73,7 +77,7 @@ struct VerdictSettings {
   double distinct_pose = 0.05;
   double doubtful_seam_gap = 0.05;  ///< largest seam gap above this (diagonal): doubtful
   double failed_seam_gap = 0.15;    ///< above this: failed
-  double doubtful_mesh_stretch = 6.0;  ///< a mesh edge stretched more than this many times: doubtful
+  double doubtful_mesh_stretch = 10.0;  ///< a mesh edge stretched more than this many times: doubtful
 };
 
 /// A verdict and why.
