@@ -1,9 +1,11 @@
 // partreg: the command-line entry point. Each subcommand lives in commands/; this file only turns
-// failures into one line on stderr and an exit code (0 success, 1 runtime failure, 2 usage error).
+// failures into one line on stderr and an exit code (0 success, 1 runtime failure, 2 usage error, 3 a
+// result rejected by its own verdict: register --fail-on).
 #include <iostream>
 #include <string>
 
 #include "partreg/commands/commands.hpp"
+#include "partreg/commands/common.hpp"
 #include "partreg/commands/console.hpp"
 #include "partreg/core/errors.hpp"
 #include "partreg/version.hpp"
@@ -67,6 +69,8 @@ int main(int argc, char** argv) {
     return fail(e.what(), 2);
   } catch (const partreg::UsageError& e) {
     return fail(e.what(), 2);
+  } catch (const partreg::app::RejectedResult& e) {
+    return fail(e.what(), 3);
   } catch (const partreg::InputError& e) {
     return fail(e.what(), 1);
   } catch (const std::exception& e) {

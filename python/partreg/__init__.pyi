@@ -96,6 +96,9 @@ class Model:
     @property
     def centre(self) -> Float64Array: ...
     @property
+    def size(self) -> float | None:
+        """The category's real size in metres (train size=...): observations in metres; None: data units."""
+    @property
     def training_instances(self) -> list[str]: ...
     @property
     def canonical_name(self) -> str: ...
@@ -139,6 +142,8 @@ class SpaceFit:
     hypotheses: int
     score: float
     runner_up_score: float
+    runner_up_shift: float
+    latent_distance: float
     @property
     def latent(self) -> Float64Array: ...
     @property
@@ -175,7 +180,27 @@ class MixtureFinish:
     noise: float
     sigma: float
 
+class TrustFigures:
+    """What a registration says of itself without the truth; lengths are shares of the model's diagonal."""
+    observed_rms: float
+    inlier_share: float
+    latent_distance: float
+    refinement_movement: float
+    pose_ambiguity: float
+    seam_gap_mean: float
+    seam_gap_max: float
+    mesh_stretch: float
+    scale: float
+    scale_at_bound: bool
+    free_space_violation: float | None
+
 class RegistrationResult:
+    figures: TrustFigures
+    @property
+    def verdict(self) -> str:
+        """'good', 'doubtful' or 'failed' (docs/verdict.md)."""
+    @property
+    def reasons(self) -> list[str]: ...
     fits: list[SpaceFit]
     history: list[HistoryStep]
     fit: FitStatistics

@@ -9,6 +9,9 @@ namespace partreg::python {
 /// Mesh, Frame, Model, ShapeSpace, the registration result and its parts, CPD results, View.
 void bind_types(pybind11::module_& module);
 
+/// The verdict: TrustFigures, and the result's figures, verdict and reasons (verdict_types.cpp).
+void bind_verdict(pybind11::module_& module);
+
 /// read/write, train, register, deform, transfer, cpd, views, errors.
 void bind_functions(pybind11::module_& module);
 

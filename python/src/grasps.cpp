@@ -120,7 +120,7 @@ void bind_grasps(py::module_& m) {
         const std::optional<core::Points> seen =
             observed.is_none() ? std::nullopt : std::optional(to_points(observed, "observed"));
         py::gil_scoped_release release;
-        const core::Gripper absolute = gripper.in_units(model->normalization.scale);
+        const core::Gripper absolute = gripper.in_units(model->observed_diagonal());
         const std::vector<core::Grasp> carried = core::transfer_grasps(*model, *result, grasps, absolute);
         if (model->canonical_mesh.faces.rows() == 0) return carried;
         const eval::MeshRays believed(core::deform_mesh(*model, *result));

@@ -17,6 +17,7 @@ PYBIND11_MODULE(_partreg, m) {
   m.attr("__version__") = partreg::kVersion;
   m.attr("model_format_version") = partreg::io::kModelFormatVersion;
   partreg::python::bind_types(m);
+  partreg::python::bind_verdict(m);
   partreg::python::bind_functions(m);
   partreg::python::bind_grasps(m);
   partreg::python::bind_reprs(m);

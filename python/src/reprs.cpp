@@ -10,6 +10,7 @@
 #include "partreg/core/deformation.hpp"
 #include "partreg/core/grasp.hpp"
 #include "partreg/core/registration.hpp"
+#include "partreg/core/verdict.hpp"
 #include "partreg/eval/views.hpp"
 
 namespace partreg::python {
@@ -65,11 +66,19 @@ void registration_reprs(py::module_& m) {
     return std::string(s.applied ? "applied" : "not applied") + ", noise " + number(s.noise) + ", sigma " +
            number(s.sigma);
   });
+  set_repr<core::TrustFigures>(m, "TrustFigures", [](const core::TrustFigures& f) {
+    return "inliers " + number(100 * f.inlier_share, 3) + "%, observed rms " + number(100 * f.observed_rms, 3) +
+           "% of the diagonal, latent distance " + number(f.latent_distance, 3) + ", pose ambiguity " +
+           number(f.pose_ambiguity, 3) + ", stretch " + number(f.mesh_stretch, 3) + ", scale " + number(f.scale) +
+           (f.free_space_violation ? ", free-space violation " + number(100 * *f.free_space_violation, 3) + "%"
+                                   : std::string());
+  });
   set_repr<core::RegistrationResult>(m, "RegistrationResult", [](const core::RegistrationResult& s) {
     std::string spaces;
     for (const core::SpaceFit& fit : s.fits) spaces += (spaces.empty() ? "" : ", ") + fit.space;
     return std::string(core::enum_name(s.variant)) + ": " + std::to_string(s.deformed.rows()) +
-           " points, spaces [" + spaces + "], fit " + fit_text(s.fit) + ", " + number(s.seconds, 3) + " s";
+           " points, spaces [" + spaces + "], verdict " + std::string(core::enum_name(s.assessment.verdict)) +
+           ", fit " + fit_text(s.fit) + ", " + number(s.seconds, 3) + " s";
   });
 }
 

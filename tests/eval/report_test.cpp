@@ -187,23 +187,27 @@ TEST(EvalReport, SeamGapsRoundTripAndShowForThePartVariantsOnly) {
   for (std::string next; std::getline(in, next);) EXPECT_EQ(fields(next), fields(header)) << next;
   EXPECT_EQ(header.find('#'), std::string::npos);
   const auto header_before = [&](const char* column) { return header.substr(0, header.rfind(column)); };
-  // Every trailing field of this row is empty: the older layouts drop them, and the 7 grasp columns.
+  // Every trailing field of this row is empty: the older layouts drop them, and the 7 grasp and 7 verdict
+  // columns after them.
+  const std::size_t later = 7 + 7;
   const auto line_without = [&](std::size_t empty_fields) {
     return line.substr(0, line.size() - empty_fields);
   };
   std::ofstream(dir / "v2.csv") << "# partreg evaluation rows, format 2\n"
                                 << header_before(",seam_gap_mean") << "\n"
-                                << line_without(5 + 7) << "\n";
+                                << line_without(5 + later) << "\n";
   std::ofstream(dir / "v3.csv") << "# partreg evaluation rows, format 3\n"
                                 << header_before(",own_part_rms_mean") << "\n"
-                                << line_without(3 + 7) << "\n";
+                                << line_without(3 + later) << "\n";
   std::ofstream(dir / "v4.csv") << "# partreg evaluation rows, format 4\n"
                                 << header_before(",mesh_stretch_max") << "\n"
-                                << line_without(1 + 7) << "\n";
+                                << line_without(1 + later) << "\n";
   std::ofstream(dir / "v5.csv") << "# partreg evaluation rows, format 5\n"
                                 << header_before(",grasps,grasps_held") << "\n"
-                                << line.substr(0, line.size() - 7) << "\n";
+                                << line_without(later) << "\n";
   EXPECT_EQ(eval::read_rows_csv(dir / "v5.csv").size(), 1u);
+  std::ofstream(dir / "v7.csv") << header_before(",verdict,inlier_share") << "\n" << line_without(7) << "\n";
+  EXPECT_EQ(eval::read_rows_csv(dir / "v7.csv").size(), 1u);
   std::ofstream(dir / "other.csv") << header << ",extra\n" << line << ",1\n";
   EXPECT_THROW(eval::read_rows_csv(dir / "other.csv"), InputError);
   for (const char* file : {"v2.csv", "v3.csv", "v4.csv"}) {

@@ -453,6 +453,7 @@ def test_every_type_prints_what_it_holds(partreg, model, registered):
         "Mesh": (model.canonical_mesh, "vertices"),
         "Frame": (partreg.Frame("grasp", np.array([1.0, 2.0, 3.0])), "grasp at [1, 2, 3]"),
         "RegistrationResult": (registered, f"hol+part: {registered.deformed.shape[0]} points"),
+        "TrustFigures": (registered.figures, f"inliers {100 * registered.figures.inlier_share:.3g}%"),
         "FitStatistics": (registered.fit, f"{100 * registered.fit.mean_normalised:.3g}% of the diagonal"),
         "SpaceFit": (registered.fits[0], f"holistic: latent [{registered.fits[0].latent[0]:.4g}"),
         "HistoryStep": (registered.history[0], "cost"),
@@ -611,3 +612,16 @@ def test_type_stub_matches_the_module(partreg):
             if isinstance(item, ast.FunctionDef) and not any(
                     isinstance(d, ast.Name) and d.id == "property" for d in item.decorator_list):
                 _same_parameters(item, getattr(member, item.name), f"{name}.{item.name}")
+
+
+def test_the_verdict_and_its_figures_equal_the_command_lines(partreg, registered, cli_register):
+    assessment = cli_register["assessment"]
+    assert registered.verdict == assessment["verdict"]
+    assert registered.reasons == assessment["reasons"]
+    figures = assessment["figures"]
+    assert registered.figures.inlier_share == pytest.approx(figures["inlier_share"], rel=1e-9)
+    assert registered.figures.observed_rms == pytest.approx(figures["observed_rms_normalised"], rel=1e-9, abs=1e-12)
+    assert registered.figures.latent_distance == pytest.approx(figures["latent_distance"], rel=1e-9)
+    assert 0.0 < registered.figures.inlier_share <= 1.0
+    assert registered.figures.free_space_violation is None  # no depth image
+    assert registered.fits[0].latent_distance == pytest.approx(cli_register["spaces"][0]["latent_distance"], rel=1e-9)

@@ -21,6 +21,12 @@
 
 namespace partreg::app {
 
+/// A command finished and wrote its outputs, but its result falls short of what was required of it
+/// (`register --fail-on`): exit 3.
+struct RejectedResult : std::runtime_error {
+  using std::runtime_error::runtime_error;
+};
+
 /// Reads a cloud (NaN points dropped) or samples a mesh to `count` points; logs what it did on stderr. With
 /// `exact_count` a cloud is also brought to `count` points (farthest-point sampling), and one with fewer
 /// points is an InputError.

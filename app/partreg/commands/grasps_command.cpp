@@ -144,7 +144,7 @@ void write_carried_grasps(const core::CategoryModel& model, const core::Registra
                           const core::Points& observed, const GraspRequest& request, const std::string& path) {
   if (model.canonical_mesh.faces.rows() == 0)
     throw InputError("model '" + model.category + "' has no canonical mesh to re-seat grasps on");
-  const core::Gripper gripper = request.gripper.in_units(model.normalization.scale);
+  const core::Gripper gripper = request.gripper.in_units(model.observed_diagonal());
   const std::vector<core::Grasp> carried = core::transfer_grasps(model, result, request.grasps, gripper);
   const eval::MeshRays believed(core::deform_mesh(model, result));
   const std::vector<core::Grasp> seated = eval::reseat_grasps(believed, &observed, carried, gripper);

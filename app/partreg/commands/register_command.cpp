@@ -41,6 +41,7 @@ struct RegisterOptions {
   int threads = 0;
   core::RegistrationSettings settings;
   ObservationInput scene_input;  // --depth/--scene: the object is cut out of a scene (observation_input.hpp)
+  std::string fail_on;  ///< empty, or the verdict at which the command exits 3
 };
 
 void write_outputs(const core::CategoryModel& model, const core::RegistrationResult& result,
@@ -135,6 +136,21 @@ nlohmann::json truth_errors(const core::CategoryModel& model, const core::Points
   json["baselines"] = baseline_errors(model, observed, result, options, truth_tree, diagonal,
                                       errors.symmetric_rms_per_diagonal);
   return json;
+}
+
+// The verdict closes the command's output (its last line on stderr), after every output was written; exit 3
+// when it is at least as bad as --fail-on asks.
+void report_verdict(const core::RegistrationResult& result, const RegisterOptions& options) {
+  const core::TrustFigures& f = result.figures;
+  for (const std::string& reason : result.assessment.reasons) std::cerr << "  " << reason << '\n';
+  const std::string verdict = core::enum_name(result.assessment.verdict);
+  std::cerr << "verdict: " << verdict << " (" << 100.0 * f.inlier_share << "% of the observed points within "
+            << 100.0 * options.settings.verdict.inlier_distance << "% of the diagonal of the model, RMS "
+            << 100.0 * f.observed_rms << "%; latent " << f.latent_distance << " sd; pose ambiguity "
+            << f.pose_ambiguity << "; largest seam gap " << 100.0 * f.seam_gap_max << "%; stretch "
+            << f.mesh_stretch << "x; scale " << f.scale << ")\n";
+  if (!options.fail_on.empty() && result.assessment.verdict >= core::parse_enum<core::Verdict>(options.fail_on))
+    throw RejectedResult("the verdict is " + verdict + " (--fail-on " + options.fail_on + ")");
 }
 
 // Every output is checked before any work: a bad name never leaves the outputs written before it.
@@ -232,7 +248,7 @@ void run_register(const RegisterOptions& options) {
   }
   if (model.canonical_mesh.faces.rows() > 0) {
     // How evenly the mesh came through: the largest edge stretch of the deformed canonical mesh.
-    const double stretch = core::mesh_stretch(model, result);
+    const double stretch = result.figures.mesh_stretch;
     std::cerr << "mesh stretch: largest edge " << stretch << "x its canonical length\n";
     report["mesh_stretch"] = stretch;
   }
@@ -245,6 +261,7 @@ void run_register(const RegisterOptions& options) {
   io::add_stage_seconds(report, "figures", figures_seconds, seconds_since(started));
   io::add_stage_seconds(report, "transfer", seconds_since(transfer_started), seconds_since(started));
   write_json_or_stdout(report, options.json_path);
+  report_verdict(result, options);
 }
 
 }  // namespace
@@ -268,6 +285,8 @@ void add_register_command(CLI::App& app) {
   command->add_option("--gripper", o->gripper_path, "gripper file (default: the grasps file's own)");
   add_registration_flags(command, o->settings);
   add_observation_flags(command, o->scene_input);
+  command->add_option("--fail-on", o->fail_on, "exit 3 when the result's verdict is at least this bad")
+      ->check(CLI::IsMember({"doubtful", "failed"}));
   add_threads_flag(command, o->threads);
   command->add_option("--init", o->init,
                       "start at this pose instead of searching: a result JSON of an earlier registration (its "

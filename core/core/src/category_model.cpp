@@ -38,6 +38,8 @@ void CategoryModel::validate() const {
     fail("the normalisation scale must be a positive finite length");
   if (!normalization.centre.allFinite()) fail("the normalisation centre is not finite");
   if (!up.allFinite() || std::abs(up.norm() - 1.0) > 1e-6) fail("the up axis must be a finite unit vector");
+  if (size && !(*size > 0.0 && std::isfinite(*size) && data_size > 0.0 && std::isfinite(data_size)))
+    fail("a real size needs a positive finite size and data size");
   if (training.seam_weight && !(*training.seam_weight >= 0.0 && *training.seam_weight <= 1e6))
     fail("the seam weight must lie in [0, 1e6]");
   for (const SeamWeightTrial& trial : training.seam_weight_trials)

@@ -118,9 +118,8 @@ Mesh deform_mesh(const CategoryModel& model, const RegistrationResult& result, c
 
 double mesh_stretch(const CategoryModel& model, const RegistrationResult& result) {
   if (model.canonical_mesh.faces.rows() == 0) return 0.0;
-  // The canonical mesh is in normalised units, the deformed one in data units.
-  return max_edge_stretch(model.canonical_mesh,
-                          deform_mesh(model, result).vertices / model.normalization.scale);
+  // The canonical mesh is in normalised units, the deformed one in observation units.
+  return max_edge_stretch(model.canonical_mesh, deform_mesh(model, result).vertices / model.observed_diagonal());
 }
 
 SeamGap seam_gap(const CategoryModel& model, const RegistrationResult& result, double radius) {
@@ -142,7 +141,7 @@ SeamGap seam_gap(const CategoryModel& model, const RegistrationResult& result, d
       if (boundary.empty()) continue;
       const Points z = select_rows(own_points, boundary);
       const Eigen::VectorXd distance =
-          (moved_by(model, own, z) - moved_by(model, other, z)).rowwise().norm() / model.normalization.scale;
+          (moved_by(model, own, z) - moved_by(model, other, z)).rowwise().norm() / model.observed_diagonal();
       gap.max = std::max(gap.max, distance.maxCoeff());
       total += distance.sum();
       gap.points += static_cast<int>(distance.size());

@@ -42,7 +42,7 @@ Eigen::Matrix3d grasp_axes(const Eigen::Vector3d& closing, const Eigen::Vector3d
 }
 
 double grasp_region_radius(const CategoryModel& model, const Gripper& gripper) {
-  return std::max(kFrameRegionRadius, 2.0 * gripper.pad_size / model.normalization.scale);
+  return std::max(kFrameRegionRadius, 2.0 * gripper.pad_size / model.observed_diagonal());
 }
 
 std::vector<Grasp> transfer_grasps(const CategoryModel& model, const RegistrationResult& result,

@@ -3,6 +3,7 @@
 #include <Eigen/Eigenvalues>
 #include <Eigen/Geometry>
 #include <algorithm>
+#include <cmath>
 #include <limits>
 #include <numeric>
 #include <optional>
@@ -377,11 +378,13 @@ SearchOutcome search_poses(const ShapeSpace& space, const ViewSurface& surface,
   for (const Candidate& candidate : candidates) {
     if (candidate.score < outcome.best_score) {
       outcome.runner_up = outcome.best_score;
+      if (std::isfinite(outcome.best_score)) outcome.runner_up_fit = outcome.best;
       outcome.best_score = candidate.score;
       outcome.best = candidate.fit;
       outcome.best_start = candidate.start;
-    } else {
-      outcome.runner_up = std::min(outcome.runner_up, candidate.score);
+    } else if (candidate.score < outcome.runner_up) {
+      outcome.runner_up = candidate.score;
+      outcome.runner_up_fit = candidate.fit;
     }
   }
   return outcome;

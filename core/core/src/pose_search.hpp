@@ -23,6 +23,7 @@ struct SearchOutcome {
   int hypotheses = 0;       ///< starting poses tried
   double best_score = 0.0;  ///< the winner's selection score (normalised length)
   double runner_up = 0.0;   ///< the best score among the other finalists (infinity when none)
+  SpaceSolution runner_up_fit;  ///< that finalist's fit (empty latent when none)
   Pose best_start;          ///< where the winner started
 };
 

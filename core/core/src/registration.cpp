@@ -12,6 +12,7 @@
 #include "partreg/core/parallel.hpp"
 #include "partreg/core/registration_options.hpp"
 #include "partreg/core/sampling.hpp"
+#include "partreg/core/verdict.hpp"
 #include "coupled_solver.hpp"
 #include "mixture_fit.hpp"
 #include "point_normals.hpp"
@@ -81,6 +82,17 @@ std::vector<int> candidate_rows(const Points& points, const SamplingSettings& sa
   return rows;
 }
 
+// An observation orders of magnitude off the model's size is in other units: refused, naming both sizes.
+// Within the bounds a partial view (smaller) or stray points (larger) still pass.
+void check_size(const CategoryModel& model, const Points& observed) {
+  const double seen = bounding_box_diagonal(observed), expected = model.observed_diagonal();
+  if (seen > 0.1 * expected && seen < 10.0 * expected) return;
+  const std::string units = model.size ? "metres (the model's real size)" : "the model's data units";
+  throw InputError("the observed cloud's diagonal is " + std::to_string(seen) + " but the '" + model.category +
+                   "' model's is " + std::to_string(expected) + ", both in " + units +
+                   ": check the observation's units" + (model.size ? "" : " or train with --size"));
+}
+
 detail::Observation prepare_observation(const CategoryModel& model, const Points& observed,
                                         const RegistrationSettings& settings, Eigen::Vector3d& centroid,
                                         std::optional<Points>& statistics_points) {
@@ -88,36 +100,53 @@ detail::Observation prepare_observation(const CategoryModel& model, const Points
     throw InputError("the observed cloud has " + std::to_string(observed.rows()) +
                      " points; at least 10 are needed");
   if (!observed.allFinite()) throw InputError("the observed cloud holds NaN or infinite points");
-  const double ratio = bounding_box_diagonal(observed) / model.normalization.scale;
-  if (!(ratio > 0.02 && ratio < 50.0))
-    throw InputError("the observed cloud is " + std::to_string(ratio) + " times the size of the '" +
-                     model.category + "' model: check its units");
+  check_size(model, observed);
+  const double S = model.observed_diagonal();
   centroid = observed.colwise().mean().transpose();
   // Thinned first, in data units: only the candidates are ever normalised, searched or sampled.
   std::optional<std::vector<int>> fine;
   const std::vector<int> rows = candidate_rows(
-      observed, settings.sampling, settings.sampling.voxel_size * model.normalization.scale, fine);
+      observed, settings.sampling, settings.sampling.voxel_size * S, fine);
   // The fit statistics of a thinned cloud read its fine representatives: a tree over every point of a million
   // cost more than the fit.
   if (fine && static_cast<double>(observed.rows()) > kCandidatesPerMatched * settings.sampling.observed_points)
     statistics_points = select_rows(observed, *fine);
   const Points candidates =
-      (select_rows(observed, rows).rowwise() - centroid.transpose()) / model.normalization.scale;
+      (select_rows(observed, rows).rowwise() - centroid.transpose()) / S;
   Observation observation;
   observation.points = select_rows(candidates, matched_rows(candidates, settings.sampling, observation.alone));
   observation.tree = std::make_unique<KdTree>(observation.points);
   if (settings.viewpoint)
-    observation.viewpoint = (*settings.viewpoint - centroid) / model.normalization.scale;
+    observation.viewpoint = (*settings.viewpoint - centroid) / S;
   return observation;
 }
 
+// Canonical data frame -> observed frame; with a real size the model's data units become metres on the way.
 Eigen::Matrix4d to_data_frame(const Pose& pose, const CategoryModel& model, const Eigen::Vector3d& centroid) {
-  const double S = model.normalization.scale;
-  const Eigen::Matrix3d sR = pose.scale * pose.rotation.toRotationMatrix();
+  const double S = model.observed_diagonal();
+  const Eigen::Matrix3d sR = model.observed_per_data() * pose.scale * pose.rotation.toRotationMatrix();
   Eigen::Matrix4d T = Eigen::Matrix4d::Identity();
   T.topLeftCorner<3, 3>() = sR;
   T.topRightCorner<3, 1>() = S * pose.translation + centroid - sR * model.normalization.centre;
   return T;
+}
+
+double mahalanobis(const ShapeSpace& space, const Eigen::VectorXd& latent) {
+  double sum = 0.0;
+  for (Eigen::Index k = 0; k < latent.size() && k < space.variances.size(); ++k)
+    if (space.variances(k) > 0.0) sum += latent(k) * latent(k) / space.variances(k);
+  return std::sqrt(sum);
+}
+
+// RMS closest-point distance between two fits' posed shapes, each way (normalised length; 0 without `other`).
+double shift(const ShapeSpace& space, const SpaceSolution& fit, const SpaceSolution& other) {
+  if (other.latent.size() != fit.latent.size()) return 0.0;
+  const Points a = fit.pose.apply(space.deformed(fit.latent)), b = other.pose.apply(space.deformed(other.latent));
+  std::vector<int> index;
+  Eigen::VectorXd ab, ba;
+  KdTree(b).nearest_all(a, index, ab);
+  KdTree(a).nearest_all(b, index, ba);
+  return std::sqrt(0.5 * (ab.mean() + ba.mean()));
 }
 
 void record(RegistrationResult& result, const std::string& name, const detail::SearchOutcome& search,
@@ -137,6 +166,9 @@ void record(RegistrationResult& result, const std::string& name, const detail::S
   fit.hypotheses = search.hypotheses;
   fit.score = search.best_score;
   fit.runner_up_score = search.runner_up;
+  const ShapeSpace& space = model.space(name);
+  fit.latent_distance = mahalanobis(space, solution.latent);
+  fit.runner_up_shift = shift(space, solution, search.runner_up_fit);
   result.fits.push_back(fit);
   for (std::size_t i = 0; i < solution.steps.size(); ++i)
     result.history.push_back({name, solution.steps[i].first,
@@ -250,9 +282,10 @@ Pose normalised_pose(const Eigen::Matrix4d& T, const CategoryModel& model, const
     throw UsageError("the initial pose is not a rotation with a uniform scale and a translation");
   Pose pose;
   pose.rotation = Eigen::Quaterniond(R).normalized();
-  pose.scale = keep_scale ? scale : 1.0;
+  // With a real size the pose also carries the data-units-to-metres factor (to_data_frame): not the fit's scale.
+  pose.scale = keep_scale ? scale / model.observed_per_data() : 1.0;
   pose.translation =
-      (T.topRightCorner<3, 1>() - centroid + sR * model.normalization.centre) / model.normalization.scale;
+      (T.topRightCorner<3, 1>() - centroid + sR * model.normalization.centre) / model.observed_diagonal();
   return pose;
 }
 
@@ -425,14 +458,16 @@ RegistrationResult register_from(const CategoryModel& model, const Points& obser
         refine_fit(deformed_normalised, without_strays(observation, deformed_normalised), observation.viewpoint,
                    settings.refinement);
     deformed_normalised += field.displacement_at(deformed_normalised);
-    result.refinement = field.transformed(model.normalization.scale, centroid);
+    result.refinement = field.transformed(model.observed_diagonal(), centroid);
   }
   result.stages.refinement = clock.lap();
-  result.deformed = (deformed_normalised * model.normalization.scale).rowwise() + centroid.transpose();
+  result.deformed = (deformed_normalised * model.observed_diagonal()).rowwise() + centroid.transpose();
   result.part = model.canonical_part;
-  result.fit = fit_statistics(result.deformed, statistics_points ? *statistics_points : observed,
-                              model.normalization.scale);
+  const Points& statistics_observed = statistics_points ? *statistics_points : observed;
+  result.fit = fit_statistics(result.deformed, statistics_observed, model.observed_diagonal());
   result.fit.strays = count_strays(observation, deformed_normalised);
+  result.figures = trust_figures(model, statistics_observed, result, settings);
+  result.assessment = judge(result.figures, settings.verdict);
   result.stages.statistics = clock.lap();
   result.seconds = result.stages.sum();
   return result;

@@ -97,7 +97,13 @@ std::vector<RegistrationOption> make_options() {
           "mixture instead of closest points (0: always)",
           0.0, 1e6, [](auto& s) -> auto& { return s.objective.mixture_noise; }),
       Make::flag(
-          "scale", "also fit a uniform scale", [](auto& s) -> auto& { return s.objective.estimate_scale; }),
+          "scale", "also fit a uniform scale, within scale-limit",
+          [](auto& s) -> auto& { return s.objective.estimate_scale; }),
+      Make::real(
+          "scale-limit",
+          "with --scale, the fitted scale stays within [1/X, X] of the model's size (a fit at a bound is "
+          "named in the verdict)",
+          1.0, 100.0, [](auto& s) -> auto& { return s.objective.scale_limit; }),
       viewpoint(),
       Make::whole(
           "restarts", "initial rotations about the up axis, evenly spaced", 1, 360,
@@ -206,6 +212,9 @@ std::vector<std::pair<std::string, std::string>> registration_option_values(
   return option_values(registration_options(), settings);
 }
 
-void validate(const RegistrationSettings& settings) { check_options(registration_options(), settings); }
+void validate(const RegistrationSettings& settings) {
+  check_options(registration_options(), settings);
+  validate(settings.verdict);
+}
 
 }  // namespace partreg::core

@@ -123,8 +123,11 @@ void constrain_pose(ceres::Problem& problem, double* rotation, double* scale,
   problem.SetManifold(rotation, new ceres::EigenQuaternionManifold);
   if (!settings.objective.estimate_scale)
     problem.SetParameterBlockConstant(scale);
-  else
-    problem.SetParameterLowerBound(scale, 0, 0.2);
+  else {
+    // Bounded both ways, never silently: a fit that ends at a bound is named in the verdict's reasons.
+    problem.SetParameterLowerBound(scale, 0, 1.0 / settings.objective.scale_limit);
+    problem.SetParameterUpperBound(scale, 0, settings.objective.scale_limit);
+  }
 }
 
 double solve_inner(ceres::Problem& problem, const RegistrationSettings& settings) {

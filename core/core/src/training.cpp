@@ -269,6 +269,15 @@ Points rows_of_part(const Target& target, int part) {
   return select_rows(target.points, rows);
 }
 
+// The instances' mean diagonal in data units, and the real size it stands for when one was given.
+void set_size(CategoryModel& model, const std::vector<TrainingInstance>& instances,
+              const TrainingSettings& settings) {
+  double total = 0.0;
+  for (const TrainingInstance& instance : instances) total += bounding_box_diagonal(instance.points);
+  model.data_size = total / static_cast<double>(instances.size());
+  if (settings.size > 0.0) model.size = settings.size;
+}
+
 }  // namespace
 
 CategoryModel train_category(const std::string& category, const std::vector<TrainingInstance>& instances,
@@ -402,6 +411,7 @@ CategoryModel train_category(const std::string& category, const std::vector<Trai
     record.seam_weight_choice = choice.explanation;
     record.seam_weight_trials = choice.trials;
   }
+  set_size(model, instances, settings);  // after the seam weight's registrations, which run in data units
   model.validate();
   out.seconds = seconds_since(start);
   return model;

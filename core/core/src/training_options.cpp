@@ -81,6 +81,11 @@ std::vector<TrainingOption> make_options() {
           "cpd-iterations", "CPD iterations per registration at most", 1, 100000,
           [](auto& s) -> auto& { return s.max_iterations; }),
       up_axis(),
+      Make::real(
+          "size",
+          "the category's real size, its instances' mean bounding-box diagonal in metres, kept in the model: "
+          "registration then takes observations in metres (0: in the files' own units)",
+          0.0, 1000.0, [](auto& s) -> auto& { return s.size; }),
   };
 }
 

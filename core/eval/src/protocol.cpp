@@ -259,7 +259,9 @@ void run_job(const EvalInput& input, const EvalSettings& settings, const FoldCon
                               core::Follow::material),
           *truth_of_row, test.diagonal);
     if (variants[v] != core::Variant::holistic) rows[v].seam = core::seam_gap(model, results[v]);
-    if (model.canonical_mesh.faces.rows() > 0) rows[v].mesh_stretch = core::mesh_stretch(model, results[v]);
+    if (model.canonical_mesh.faces.rows() > 0) rows[v].mesh_stretch = results[v].figures.mesh_stretch;
+    rows[v].figures = results[v].figures;
+    rows[v].verdict = results[v].assessment.verdict;
     if (judge_grasps) rows[v].grasps = detail::registration_grasps(judge, model, results[v]);
   }
   if (!settings.baselines) return;
@@ -319,6 +321,8 @@ std::vector<std::string> tested_instances(const EvalInput& input, const EvalSett
     throw UsageError("a fold count of " + std::to_string(protocol.folds) + " for " +
                      std::to_string(input.instances.size()) +
                      " instances: it must be 0 (leave-one-out) or between 2 and the instance count");
+  if (settings.training.size > 0.0)
+    throw UsageError("eval observes the category's own files in their own units: --size has no place there");
   if (settings.shard_count < 1 || settings.shard < 0 || settings.shard >= settings.shard_count)
     throw UsageError("shard index " + std::to_string(settings.shard) + " with a shard count of " +
                      std::to_string(settings.shard_count) +
@@ -412,7 +416,7 @@ std::vector<EvalRow> run_evaluation(const EvalInput& input, const EvalSettings& 
     const std::vector<Template> templates =
         settings.baselines ? fold_templates(model, instances) : std::vector<Template>{};
     const core::Gripper gripper =
-        settings.grasps ? settings.grasps->gripper.in_units(model.normalization.scale) : core::Gripper{};
+        settings.grasps ? settings.grasps->gripper.in_units(model.observed_diagonal()) : core::Gripper{};
     const std::vector<core::Grasp> grasps =
         settings.grasps ? detail::fold_grasps(model, gripper, *settings.grasps, mix(settings.seed, fold + 1))
                         : std::vector<core::Grasp>{};

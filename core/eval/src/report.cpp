@@ -13,6 +13,7 @@
 #include "partreg/core/errors.hpp"
 #include "partreg/core/registration_settings.hpp"
 #include "partreg/eval/baselines.hpp"
+#include "partreg/eval/verdict_report.hpp"
 
 namespace partreg::eval {
 namespace {
@@ -21,8 +22,8 @@ namespace {
 // spreadsheet read without options); the run's other facts are in run.json beside it, with the layout's
 // number (kRowsFormat: raised when a column changes meaning). Earlier layouts started with a "# partreg
 // evaluation rows, format N" line and added columns at the end: 3 the two seam-gap columns, 4 the own-part
-// figures, 5 the mesh stretch; plain files add the grasp columns at the end (7). They are still read (their
-// missing figures stay empty).
+// figures, 5 the mesh stretch; plain files add the grasp columns (7), then the verdict and the truth-free
+// figures it was judged by (8). They are still read (their missing figures stay empty).
 #define PARTREG_FORMAT_2_COLUMNS                                                                      \
   "category,instance,canonical,fold,variant,view,direction_x,direction_y,direction_z,perturbation,"   \
   "level_index,paper_level,level,diagonal,observed_points,eq5,eq5_per_diagonal2,reverse_eq5,"         \
@@ -37,16 +38,21 @@ struct CsvFormat {
   const char* header;
   std::size_t columns;
 };
-constexpr std::size_t kFormat2Columns = 24, kFormat3Columns = 26, kFormat4Columns = 28;
+#define PARTREG_VERDICT_COLUMNS \
+  ",verdict,inlier_share,observed_rms_per_diagonal,latent_distance,pose_ambiguity,scale,refinement_movement"
+constexpr std::size_t kFormat2Columns = 24, kFormat3Columns = 26, kFormat4Columns = 28, kFormat5Columns = 29;
+constexpr std::size_t kVerdictColumnsStart = kFormat5Columns + detail::kGraspColumnCount;
+constexpr std::size_t kVerdictColumnsEnd = kVerdictColumnsStart + 7;
 // The format written first, then the older ones read.
-constexpr std::size_t kFormat5Columns = kFormat4Columns + 1;
 constexpr CsvFormat kFormats[] = {
-    {"", PARTREG_FORMAT_5_COLUMNS PARTREG_GRASP_COLUMNS, kFormat5Columns + detail::kGraspColumnCount},
+    {"", PARTREG_FORMAT_5_COLUMNS PARTREG_GRASP_COLUMNS PARTREG_VERDICT_COLUMNS, kVerdictColumnsEnd},
+    {"", PARTREG_FORMAT_5_COLUMNS PARTREG_GRASP_COLUMNS, kVerdictColumnsStart},
     {"", PARTREG_FORMAT_5_COLUMNS, kFormat5Columns},
     {"# partreg evaluation rows, format 5", PARTREG_FORMAT_5_COLUMNS, kFormat5Columns},
     {"# partreg evaluation rows, format 4", PARTREG_FORMAT_4_COLUMNS, kFormat4Columns},
     {"# partreg evaluation rows, format 3", PARTREG_FORMAT_3_COLUMNS, kFormat3Columns},
     {"# partreg evaluation rows, format 2", PARTREG_FORMAT_2_COLUMNS, kFormat2Columns}};
+#undef PARTREG_VERDICT_COLUMNS
 #undef PARTREG_FORMAT_5_COLUMNS
 #undef PARTREG_FORMAT_4_COLUMNS
 #undef PARTREG_FORMAT_3_COLUMNS
@@ -80,6 +86,29 @@ std::vector<std::string> split(const std::string& line) {
   return fields;
 }
 
+// The verdict's columns (format 8): a registration's verdict and figures; empty for a baseline.
+void parse_verdict(EvalRow& row, const std::vector<std::string>& f) {
+  const auto field = [&](std::size_t k) { return f[kVerdictColumnsStart + k]; };
+  row.verdict = core::parse_enum<core::Verdict>(field(0));
+  core::TrustFigures figures;
+  figures.inlier_share = std::stod(field(1)), figures.observed_rms = std::stod(field(2));
+  figures.latent_distance = std::stod(field(3)), figures.pose_ambiguity = std::stod(field(4));
+  figures.scale = std::stod(field(5)), figures.refinement_movement = std::stod(field(6));
+  if (row.seam) figures.seam_gap_mean = row.seam->mean, figures.seam_gap_max = row.seam->max;
+  if (row.mesh_stretch) figures.mesh_stretch = *row.mesh_stretch;
+  row.figures = figures;
+}
+
+void write_verdict(std::ostream& out, const EvalRow& r) {
+  if (!r.verdict || !r.figures) {
+    out << ",,,,,,,";
+    return;
+  }
+  const core::TrustFigures& f = *r.figures;
+  out << ',' << core::enum_name(*r.verdict) << ',' << f.inlier_share << ',' << f.observed_rms << ','
+      << f.latent_distance << ',' << f.pose_ambiguity << ',' << f.scale << ',' << f.refinement_movement;
+}
+
 EvalRow parse_row(const std::vector<std::string>& f) {
   EvalRow row;
   row.category = f[0], row.instance = f[1], row.canonical = f[2], row.fold = std::stoi(f[3]);
@@ -106,6 +135,7 @@ EvalRow parse_row(const std::vector<std::string>& f) {
   }
   if (f.size() > kFormat4Columns && !f[28].empty()) row.mesh_stretch = std::stod(f[28]);
   detail::parse_grasp_fields(f, kFormat5Columns, row);
+  if (f.size() > kVerdictColumnsStart && !f[kVerdictColumnsStart].empty()) parse_verdict(row, f);
   return row;
 }
 
@@ -216,7 +246,9 @@ void write_rows_csv(const std::filesystem::path& path, const std::vector<EvalRow
     if (r.errors.own_part_rms_mean_per_diagonal) out << *r.errors.own_part_rms_mean_per_diagonal;
     out << ',' << parts_field(r.errors.own_part_rms_per_diagonal) << ',';
     if (r.mesh_stretch) out << *r.mesh_stretch;
-    out << detail::grasp_fields(r) << '\n';
+    out << detail::grasp_fields(r);
+    write_verdict(out, r);
+    out << '\n';
   }
   if (!out.flush()) throw InputError("cannot write " + path.string());
 }
@@ -601,6 +633,7 @@ std::string markdown_report(const std::vector<EvalRow>& rows) {
   seam_tables(out, rows);
   stretch_tables(out, rows);
   detail::grasp_tables(out, rows);
+  verdict_tables(out, rows);
   sweep_tables(out, rows);
   timing_table(out, rows);
   return out.str();

@@ -107,7 +107,7 @@ void write_model(const std::filesystem::path& path, const core::CategoryModel& m
     arrays.add(prefix + "training_latents", space.training_latents);
     spaces.push_back({{"name", space.name}, {"beta", space.beta}, {"total_variance", space.total_variance}});
   }
-  const nlohmann::json header = {
+  nlohmann::json header = {
       {"format", "partreg-model"},
       {"format_version", kModelFormatVersion},
       {"partreg_version", PARTREG_VERSION},
@@ -123,6 +123,8 @@ void write_model(const std::filesystem::path& path, const core::CategoryModel& m
       {"arrays", arrays.table()},
       {"blob_bytes", arrays.blob().size()},
       {"header_fnv1a64", std::string(kHeaderChecksumDigits, '0')}};
+  // Only a model with a real size has the member: one without reads in older partreg versions as before.
+  if (model.size) header["size"] = {{"metres", *model.size}, {"data_units", model.data_size}};
   std::string text = header.dump();
   const std::size_t checksum_at = checksum_position(text);
   text.replace(checksum_at, kHeaderChecksumDigits, hex16(fnv1a64(text.data(), text.size())));
@@ -203,7 +205,8 @@ class ArrayReader {
 void check_header_checksum(const nlohmann::json& header, const std::string& text, const std::string& file) {
   static const std::set<std::string> known = {
       "format",   "format_version", "partreg_version", "category",   "normalization",  "part_names",
-      "training", "spaces",         "arrays",          "blob_bytes", "header_fnv1a64", "up"};
+      "training", "spaces",         "arrays",          "blob_bytes", "header_fnv1a64", "up",
+      "size"};
   for (const auto& member : header.items())
     if (!known.count(member.key()))
       throw InputError("model file " + file + " is damaged (unknown header member '" + member.key() + "')");
@@ -278,6 +281,10 @@ core::CategoryModel model_from(const nlohmann::json& header, const ArrayReader& 
   if (header.contains("up"))  // files from before the up axis was kept: +y, the default
     model.up = {header.at("up").at(0).get<double>(), header.at("up").at(1).get<double>(),
                 header.at("up").at(2).get<double>()};
+  if (header.contains("size")) {  // models trained with a real size (train --size)
+    model.size = header.at("size").at("metres").get<double>();
+    model.data_size = header.at("size").at("data_units").get<double>();
+  }
   model.training = training_from_json(header.at("training"));
   model.canonical = arrays.get<core::Points>("canonical");
   model.canonical_part = arrays.get<Eigen::VectorXi>("canonical_part");

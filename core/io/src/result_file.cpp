@@ -54,6 +54,9 @@ nlohmann::json stage_seconds_json(const core::StageSeconds& stages, double total
           {"total", total}};
 }
 
+// A number that may be infinite or unset: JSON has no infinity, so null.
+nlohmann::json finite_or_null(double value) { return std::isfinite(value) ? nlohmann::json(value) : nlohmann::json(); }
+
 }  // namespace
 
 void add_stage_seconds(nlohmann::json& report, const std::string& stage, double seconds, double total) {
@@ -64,6 +67,28 @@ void add_stage_seconds(nlohmann::json& report, const std::string& stage, double 
     if (name != "other" && name != "total") sum += value.get<double>();
   stages["other"] = total - sum;
   stages["total"] = total;
+}
+
+nlohmann::json verdict_json(const core::RegistrationResult& result) {
+  const core::TrustFigures& f = result.figures;
+  nlohmann::json json = nlohmann::json::object();
+  json["verdict"] = core::enum_name(result.assessment.verdict);
+  json["reasons"] = nlohmann::json::array();
+  for (const std::string& reason : result.assessment.reasons) json["reasons"].push_back(reason);
+  nlohmann::json& figures = json["figures"];
+  figures["observed_rms_normalised"] = f.observed_rms;
+  figures["inlier_share"] = f.inlier_share;
+  figures["latent_distance"] = f.latent_distance;
+  figures["refinement_movement_normalised"] = f.refinement_movement;
+  figures["pose_ambiguity"] = finite_or_null(f.pose_ambiguity);
+  figures["seam_gap_mean_normalised"] = f.seam_gap_mean;
+  figures["seam_gap_max_normalised"] = f.seam_gap_max;
+  figures["mesh_stretch"] = f.mesh_stretch;
+  figures["scale"] = f.scale;
+  figures["scale_at_bound"] = f.scale_at_bound;
+  figures["free_space_violation"] =
+      f.free_space_violation ? nlohmann::json(*f.free_space_violation) : nlohmann::json();
+  return json;
 }
 
 nlohmann::json result_json(const core::RegistrationResult& result, const core::RegistrationSettings& settings,
@@ -80,8 +105,9 @@ nlohmann::json result_json(const core::RegistrationResult& result, const core::R
          {"stop_reason", core::enum_name(fit.stop_reason)},
          {"pose_hypotheses", fit.hypotheses},
          {"selection_score", fit.score},
-         {"runner_up_score",
-          std::isfinite(fit.runner_up_score) ? nlohmann::json(fit.runner_up_score) : nlohmann::json()},
+         {"runner_up_score", finite_or_null(fit.runner_up_score)},
+         {"runner_up_shift_normalised", fit.runner_up_shift},
+         {"latent_distance", fit.latent_distance},
          {"seconds", fit.seconds}});
   nlohmann::json request = nlohmann::json::object();
   for (const auto& [name, value] : core::registration_option_values(settings)) request[name] = value;
@@ -104,6 +130,7 @@ nlohmann::json result_json(const core::RegistrationResult& result, const core::R
             {"warm_score", result.warm_score},
             {"pose_score", result.pose_score}}},
           {"stage_seconds", stage_seconds_json(result.stages, result.seconds)},
+          {"assessment", verdict_json(result)},
           {"seconds", result.seconds}};
 }
 

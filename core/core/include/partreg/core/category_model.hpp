@@ -59,6 +59,18 @@ struct CategoryModel {
   /// The category's up axis in its data frame (unit length; the normalised frame has the same axes): the
   /// pose search turns about it unless a registration names another. +y for files from before it was kept.
   Eigen::Vector3d up = Eigen::Vector3d::UnitY();
+  /// The category's real size (`partreg train --size`): its training instances' mean bounding-box diagonal,
+  /// in metres. With it, observations are in metres whatever units the training files used; unset, they
+  /// are in the model's data units.
+  std::optional<double> size;
+  /// The training instances' mean bounding-box diagonal in data units (0 in files from before it was kept).
+  double data_size = 0.0;
+
+  /// Observation units per data unit: size / data_size for a model with a size, else 1.
+  double observed_per_data() const { return size && data_size > 0.0 ? *size / data_size : 1.0; }
+  /// The canonical's bounding-box diagonal in observation units: what every registration figure is a
+  /// fraction of.
+  double observed_diagonal() const { return normalization.scale * observed_per_data(); }
 
   bool has_parts() const { return !part_names.empty(); }
   const ShapeSpace& holistic() const { return spaces.front(); }

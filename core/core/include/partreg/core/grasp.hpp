@@ -56,7 +56,7 @@ void validate(const Gripper& gripper);
 
 /// The width of the region a grasp's axes turn with (normalised length): two pads. On a held-out real mug
 /// (30 grasps of a 0.35-diagonal gripper) carried grasps held 15 with half a pad, 20 with two, 19 with the
-/// pose's rotation alone.
+/// pose's rotation alone. `gripper` in observation units (Gripper::in_units(model.observed_diagonal())).
 double grasp_region_radius(const CategoryModel& model, const Gripper& gripper);
 
 /// Grasps on the canonical carried onto the observed object: both contacts move as material points

@@ -50,6 +50,11 @@ struct SpaceFit {
   int hypotheses = 1;            ///< starting poses the search tried
   double score = 0.0;            ///< the winner's selection score (InitialisationSettings::score)
   double runner_up_score = 0.0;  ///< the best other finalist's; infinity when there was none
+  /// How far that finalist put the object: RMS closest-point distance between its posed, deformed canonical
+  /// points and the winner's (fraction of the model's diagonal; 0 when there was none).
+  double runner_up_shift = 0.0;
+  /// Mahalanobis distance of `latent` from the space's mean (training standard deviations).
+  double latent_distance = 0.0;
 };
 
 /// The state after one outer step, for stepping through a registration.
@@ -137,6 +142,8 @@ struct RegistrationResult {
   /// this result is held to (WarmStart::score).
   double pose_score = 0.0;
   StageSeconds stages;  ///< where `seconds` went
+  TrustFigures figures;   ///< what the result says of itself without the truth (verdict.hpp)
+  Assessment assessment;  ///< the verdict on `figures`, with its reasons
   double seconds = 0.0;
 };
 

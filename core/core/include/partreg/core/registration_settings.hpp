@@ -10,6 +10,7 @@
 #include <optional>
 
 #include "partreg/core/enum_names.hpp"
+#include "partreg/core/verdict.hpp"
 
 namespace partreg::core {
 
@@ -61,7 +62,11 @@ struct ObjectiveSettings {
   /// own points only, and the prior is all that keeps its shape plausible (at 1e-5 kettles' partial views
   /// read 3.98% of the diagonal against 3.10% at 1e-4: docs/registration.md, "The prior").
   double partwise_prior_weight = 1e-4;
-  bool estimate_scale = false;  ///< also fit a uniform scale (bounded below by 0.2)
+  bool estimate_scale = false;  ///< also fit a uniform scale, within scale_limit
+  /// A fitted scale stays within [1 / scale_limit, scale_limit] of the model's size (the canonical at the
+  /// category's real size with `train --size`); one that ends at a bound says so in the verdict's reasons.
+  /// 3 covers the 0.5x to 2x a category's real objects span, with room for the shape space's own spread.
+  double scale_limit = 3.0;
   /// An observation whose noise reads above this (normalised length, read off the holistic fit as the
   /// refinement reads it) ends its space fits with EM over a Gaussian mixture instead of closest points,
   /// which a noisy cloud biases (docs/registration.md, "Noise"). 0.03 lies above every clean view of the six
@@ -172,6 +177,7 @@ struct RegistrationSettings {
   ConvergenceSettings convergence;
   SamplingSettings sampling;
   RefinementSettings refinement;
+  VerdictSettings verdict;  ///< the thresholds the result's verdict is judged by (verdict.hpp)
   /// Camera position (observed frame, data units): only canonical points facing it are matched. Unknown when
   /// empty.
   std::optional<Eigen::Vector3d> viewpoint;

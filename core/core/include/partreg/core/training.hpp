@@ -59,6 +59,10 @@ struct TrainingSettings {
   /// The category's up axis in its data frame (any length > 0; kept in the model, normalised): y for
   /// ShapeNet and the kettles, z for the drills (../shared/data/README.md).
   Eigen::Vector3d up = Eigen::Vector3d::UnitY();
+  /// The category's real size: its instances' mean bounding-box diagonal in metres, kept in the model so
+  /// that registration takes observations in metres whatever units the training files used (0: none; the
+  /// observations are then in the files' units). 0.12 for mugs.
+  double size = 0.0;
 };
 
 /// What training did, for logs and the closing report.

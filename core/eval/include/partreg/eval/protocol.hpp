@@ -120,6 +120,10 @@ struct EvalRow {
   std::optional<double> mesh_stretch;
   /// With EvalSettings::grasps, for the variants and the rigid canonical: the carried grasps on the truth.
   std::optional<GraspScore> grasps;
+  /// Registrations: what the result said of itself without the truth (core::TrustFigures) and its verdict;
+  /// empty for the baselines. The report sets them against the truth (verdict_report.hpp).
+  std::optional<core::TrustFigures> figures;
+  std::optional<core::Verdict> verdict;
 };
 
 /// Progress (core/progress.hpp): rows done, rows planned, and a line worth logging (empty when there is

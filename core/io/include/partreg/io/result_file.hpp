@@ -33,13 +33,18 @@ struct ResultSource {
 /// iterations, seconds and the mean and largest movement of the fitted points as a share of the diagonal);
 /// how the pose was found (`start`: outcome searched | warm | warm_lost, and the warm start's score); where the
 /// time went (`stage_seconds`: prepare, search, fits, refinement, statistics, other and total, wall seconds
-/// summing to total) and the total time.
+/// summing to total); the total time; and `assessment` (verdict_json).
 nlohmann::json result_json(const core::RegistrationResult& result, const core::RegistrationSettings& settings,
                            const ResultSource& source);
 
 /// Adds a front end's own stage (`read`, `figures`, `transfer`) to a result JSON's `stage_seconds` and sets its
 /// total to `total` (wall seconds of the whole request), so that `other` holds what no stage accounts for.
 void add_stage_seconds(nlohmann::json& report, const std::string& stage, double seconds, double total);
+
+/// The result's verdict (`verdict`: good, doubtful or failed), its `reasons` and the truth-free `figures`
+/// it was judged by (verdict.hpp; lengths as fractions of the model's diagonal; an infinite pose ambiguity,
+/// no distinct runner-up, and a free-space share without a depth image are null).
+nlohmann::json verdict_json(const core::RegistrationResult& result);
 
 /// The errors against a ground-truth instance (truth_errors.hpp), keys named as its fields.
 nlohmann::json truth_errors_json(const core::TruthErrors& errors);
