@@ -10,6 +10,7 @@
 #include "partreg/core/kdtree.hpp"
 #include "partreg/core/sampling.hpp"
 #include "partreg/core/space_walk.hpp"
+#include "mesh_relaxation.hpp"
 #include "seam_agreement.hpp"
 
 namespace partreg::core {
@@ -110,9 +111,16 @@ Points deform_points(const CategoryModel& model, const RegistrationResult& resul
 
 Mesh deform_mesh(const CategoryModel& model, const RegistrationResult& result, const SeamBlend& blend) {
   Mesh mesh;
-  mesh.vertices =
-      deform_points(model, result, model.normalization.undo(model.canonical_mesh.vertices), blend);
   mesh.faces = model.canonical_mesh.faces;
+  const Points moved =
+      deform_points(model, result, model.normalization.undo(model.canonical_mesh.vertices), blend);
+  // The canonical as the pose alone would place it: what a fold or a stretch is judged against.
+  const Eigen::Matrix4d& T = result.fits[active_spaces(result).front()].T_observed_canonical;
+  const Points posed = ((model.canonical_mesh.vertices * model.observed_diagonal()) *
+                        nearest_rotation(T.topLeftCorner<3, 3>()).transpose())
+                           .rowwise() +
+                       T.topRightCorner<3, 1>().transpose();
+  mesh.vertices = detail::relax_faults(mesh.faces, posed, moved, detail::MeshFaults{});
   return mesh;
 }
 

@@ -50,7 +50,11 @@ enum class Follow { surface, material };
 Points deform_points(const CategoryModel& model, const RegistrationResult& result,
                      const Points& canonical_points, const SeamBlend& blend = {}, Follow follow = Follow::surface);
 
-/// The canonical mesh deformed into the observed frame (same faces).
+/// The canonical mesh deformed into the observed frame (same faces): deform_points of its vertices, except
+/// where that turns a face over against the posed canonical or stretches an edge beyond 3x: there, and two
+/// rings of vertices around, the displacement is the smoothest one (harmonic) agreeing with the mesh around it
+/// (more rings while faults remain). A ShapeNet mug model's mean shape turned 718 of 22140 faces over at its
+/// handle, and its refined partial views stretched edges up to 4.6x.
 Mesh deform_mesh(const CategoryModel& model, const RegistrationResult& result, const SeamBlend& blend = {});
 
 /// How far the registration stretched the canonical mesh: the largest ratio of an edge's length in
