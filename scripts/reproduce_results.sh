@@ -157,6 +157,13 @@ if wanted paper full && have_data kettles paper; then
     "bowls $data/bowls $paper" "bottles $data/bottles $paper" "spatulas $data/spatulas $paper"
   finish results.md paper
 fi
+if wanted grasps-verdict full && have_data mugs grasps-verdict; then
+  begin
+  gripper="--gripper $root/assets/grippers/relative_parallel_jaw.json --variants holistic,hol+part --views 12 --sweeps none"
+  evaluate grasps-verdict "Grasps held on the true mesh;A registration is bad when" \
+    "mugs $data/mugs $gripper" "bowls $data/bowls $gripper" "bottles $data/bottles $gripper"
+  finish results.md grasps-verdict
+fi
 if wanted evaluation-speed full && have_data kettles evaluation-speed; then
   begin
   evaluate evaluation-speed "Time per registration" "kettles $data/kettles --protocol quick --no-baselines"
