@@ -159,7 +159,7 @@ if wanted paper full && have_data kettles paper; then
 fi
 if wanted grasps-verdict full && have_data mugs grasps-verdict; then
   begin
-  gripper="--gripper $root/assets/grippers/relative_parallel_jaw.json --variants holistic,hol+part --views 12 --sweeps none"
+  gripper="--gripper $root/assets/grippers/relative_parallel_jaw.json --protocol quick --variants holistic,hol+part --sweeps none"
   evaluate grasps-verdict "Grasps held on the true mesh;A registration is bad when" \
     "mugs $data/mugs $gripper" "bowls $data/bowls $gripper" "bottles $data/bottles $gripper"
   finish results.md grasps-verdict
