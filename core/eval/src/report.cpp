@@ -24,8 +24,8 @@ namespace {
 // number (kRowsFormat: raised when a column changes meaning). Earlier layouts started with a "# partreg
 // evaluation rows, format N" line and added columns at the end: 3 the two seam-gap columns, 4 the own-part
 // figures, 5 the mesh stretch; plain files add the grasp columns (7), then the verdict and the truth-free
-// figures it was judged by (8), then the depth scenes' cut and its overlap with the true mask (9). They are
-// still read (their missing figures stay empty).
+// figures it was judged by (8), then the depth scenes' cut and its overlap and precision against the true
+// mask (9). They are still read (their missing figures stay empty).
 #define PARTREG_FORMAT_2_COLUMNS                                                                      \
   "category,instance,canonical,fold,variant,view,direction_x,direction_y,direction_z,perturbation,"   \
   "level_index,paper_level,level,diagonal,observed_points,eq5,eq5_per_diagonal2,reverse_eq5,"         \
@@ -45,8 +45,8 @@ struct CsvFormat {
 constexpr std::size_t kFormat2Columns = 24, kFormat3Columns = 26, kFormat4Columns = 28, kFormat5Columns = 29;
 constexpr std::size_t kVerdictColumnsStart = kFormat5Columns + detail::kGraspColumnCount;
 constexpr std::size_t kVerdictColumnsEnd = kVerdictColumnsStart + 7;
-#define PARTREG_SCENE_COLUMNS ",scene_cut,scene_overlap"
-constexpr std::size_t kSceneColumnsEnd = kVerdictColumnsEnd + 2;
+#define PARTREG_SCENE_COLUMNS ",scene_cut,scene_overlap,scene_precision"
+constexpr std::size_t kSceneColumnsEnd = kVerdictColumnsEnd + 3;
 // The format written first, then the older ones read.
 constexpr CsvFormat kFormats[] = {
     {"", PARTREG_FORMAT_5_COLUMNS PARTREG_GRASP_COLUMNS PARTREG_VERDICT_COLUMNS PARTREG_SCENE_COLUMNS,
@@ -144,7 +144,8 @@ EvalRow parse_row(const std::vector<std::string>& f) {
   detail::parse_grasp_fields(f, kFormat5Columns, row);
   if (f.size() > kVerdictColumnsStart && !f[kVerdictColumnsStart].empty()) parse_verdict(row, f);
   if (f.size() > kVerdictColumnsEnd && !f[kVerdictColumnsEnd].empty())
-    row.scene = SceneCutScore{core::parse_enum<CutKind>(f[kVerdictColumnsEnd]), std::stod(f[kVerdictColumnsEnd + 1])};
+    row.scene = SceneCutScore{core::parse_enum<CutKind>(f[kVerdictColumnsEnd]), std::stod(f[kVerdictColumnsEnd + 1]),
+                              std::stod(f[kVerdictColumnsEnd + 2])};
   return row;
 }
 
@@ -256,9 +257,9 @@ void write_rows_csv(const std::filesystem::path& path, const std::vector<EvalRow
     out << detail::grasp_fields(r);
     write_verdict(out, r);
     if (r.scene)
-      out << ',' << core::enum_name(r.scene->cut) << ',' << r.scene->overlap;
+      out << ',' << core::enum_name(r.scene->cut) << ',' << r.scene->overlap << ',' << r.scene->precision;
     else
-      out << ",,";
+      out << ",,,";
     out << '\n';
   }
   if (!out.flush()) throw InputError("cannot write " + path.string());
@@ -593,6 +594,7 @@ void baseline_tables(std::ostringstream& out, const std::vector<EvalRow>& rows) 
 // scene.
 struct SceneFigures {
   int scenes = 0, right = 0;  // scene cuts, and of those the ones that chose the right object
+  double overlap_sum = 0.0;   // the scene cuts' overlaps (intersection over union)
   double scene_sum = 0.0, hand_sum = 0.0;
   int registered = 0;  // scenes where both cuts registered (a finite error each)
 };
@@ -610,7 +612,8 @@ SceneFigures scene_figures(const std::vector<EvalRow>& rows, const std::string& 
   for (const auto& [key, pair] : pairs) {
     if (!pair.first) continue;
     ++figures.scenes;
-    figures.right += pair.first->scene->overlap >= kRightObjectOverlap;
+    figures.right += pair.first->scene->precision >= kRightObjectPrecision;
+    figures.overlap_sum += pair.first->scene->overlap;
     if (!pair.second) continue;
     const double scene = pair.first->errors.symmetric_rms_per_diagonal;
     const double hand = pair.second->errors.symmetric_rms_per_diagonal;
@@ -623,14 +626,17 @@ SceneFigures scene_figures(const std::vector<EvalRow>& rows, const std::string& 
 // The depth scenes: the scene cut against the same depth image cut by hand, per category and variant.
 void scene_tables(std::ostringstream& out, const std::vector<EvalRow>& rows) {
   if (std::none_of(rows.begin(), rows.end(), [](const EvalRow& r) { return r.scene.has_value(); })) return;
-  out << "\n### Depth scenes\n\nEach held-out instance on a table between training instances, seen by a depth "
-         "camera; the scene cut (support plane removed, clusters, the one nearest the image centre) against "
+  out << "\nDepth scenes (eval --scenes): each held-out instance on a table between training instances, seen by "
+         "a depth camera; the scene cut (support plane removed, clusters, the one nearest the image centre) against "
          "the same image cut by hand (the object's true mask), each registered about the table's normal. "
-         "Right object: the cut's pixels and the object's measured pixels overlap by at least "
-      << kRightObjectOverlap
-      << " (intersection over union). Mean symmetric RMS, % of the diagonal, over the scenes where both cuts "
-         "registered; scene / hand is the ratio of the two means.\n\n";
-  header_row(out, "category", {"variant", "scenes", "right object", "scene cut", "hand cut", "scene / hand"});
+         "Right object: at least "
+      << kRightObjectPrecision
+      << " of the cut's pixels are the object's; overlap: the mean intersection over union of the scene cut's "
+         "pixels with the object's measured pixels (below 1: pieces of the object lost, or neighbours "
+         "taken). Mean symmetric RMS, % of the diagonal, over the scenes where both cuts registered; scene / "
+         "hand is the ratio of the two means.\n\n";
+  header_row(out, "category",
+             {"variant", "scenes", "right object", "overlap", "scene cut", "hand cut", "scene / hand"});
   for (const std::string& category : categories_of(rows))
     for (const std::string& variant : variants_of(rows)) {
       const SceneFigures f = scene_figures(rows, category, variant);
@@ -638,7 +644,8 @@ void scene_tables(std::ostringstream& out, const std::vector<EvalRow>& rows) {
       const double scene = f.registered ? f.scene_sum / f.registered : std::nan("");
       const double hand = f.registered ? f.hand_sum / f.registered : std::nan("");
       out << "| " << category << " | " << variant << " | " << f.scenes << " | " << f.right << " ("
-          << cell(double(f.right) / f.scenes, 100, 0) << "%) | " << cell(scene, 100) << " | " << cell(hand, 100)
+          << cell(double(f.right) / f.scenes, 100, 0) << "%) | " << cell(f.overlap_sum / f.scenes, 1, 2) << " | "
+          << cell(scene, 100) << " | " << cell(hand, 100)
           << " | " << cell(scene / hand, 1, 2) << " |\n";
     }
 }

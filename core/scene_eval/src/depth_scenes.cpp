@@ -68,14 +68,16 @@ RenderedScene render_scene(const DepthSceneSettings& settings, const eval::EvalI
   return out;
 }
 
-// Intersection over union of the cut's pixels with the object's measured pixels.
-double overlap(const scene::CameraPoints& cut, const RenderedScene& scene) {
+// The cut's pixels against the object's measured pixels: intersection over union, and the share of the cut
+// on the object.
+eval::SceneCutScore score_cut(eval::CutKind kind, const scene::CameraPoints& cut, const RenderedScene& scene) {
   const std::vector<float>& depth = scene.rendered.depth.metres;
   std::size_t object = 0, common = 0;
   for (std::size_t p = 0; p < depth.size(); ++p) object += scene.mask.selected[p] && depth[p] > 0;
   for (int pixel : cut.pixel) common += pixel >= 0 && scene.mask.selected[pixel] && depth[pixel] > 0;
   const std::size_t either = cut.pixel.size() + object - common;
-  return either > 0 ? double(common) / double(either) : 0.0;
+  return {kind, either > 0 ? double(common) / double(either) : 0.0,
+          cut.pixel.empty() ? 0.0 : double(common) / double(cut.pixel.size())};
 }
 
 // The cut in the model's data units (the camera stays at the origin).
@@ -205,7 +207,7 @@ void DepthScenes::run(const eval::EvalInput& input, const eval::EvalSettings& se
       row.fold = tested.fold, row.view = job, row.direction = direction;
       row.diagonal = tested.diagonal, row.errors.diagonal = tested.diagonal;
       row.observed_points = cut ? static_cast<int>(cut->object.points.rows()) : 0;
-      row.scene = eval::SceneCutScore{kind, cut ? overlap(cut->object, scene) : 0.0};
+      row.scene = cut ? score_cut(kind, cut->object, scene) : eval::SceneCutScore{kind, 0.0, 0.0};
       rows[(kind == eval::CutKind::scene ? 0 : variants.size()) + v] = std::move(row);
     }
   }

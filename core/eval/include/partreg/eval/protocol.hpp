@@ -120,18 +120,21 @@ struct GraspScore {
 };
 
 /// A depth-scene row's cut (scene_eval/depth_scenes.hpp): which cut it registered and how well the cut
-/// matched the held-out object.
+/// matched the held-out object's measured pixels (its true mask).
 struct SceneCutScore {
   CutKind cut = CutKind::scene;
-  /// Intersection over union of the cut's pixels with the held-out object's measured pixels (its true
-  /// mask): 1 for the hand cut, near 1 when the scene cut chose the right object, 0 when it chose another
-  /// (or found none).
+  /// Intersection over union of the cut's pixels with the object's: 1 for the hand cut, near 1 for a scene
+  /// cut of the whole object, lower for a piece of it (or the object merged with a neighbour), 0 for another
+  /// object or none.
   double overlap = 0.0;
+  /// The share of the cut's pixels that are the object's: near 1 for the whole object or a piece of it, 0
+  /// for another object or none.
+  double precision = 0.0;
 };
 
-/// A scene cut chose the right object when its overlap with the object's true mask is at least this: a cut
-/// that merged the object with a neighbour, or took a neighbour, falls below it.
-inline constexpr double kRightObjectOverlap = 0.5;
+/// A scene cut chose the right object when at least this share of its pixels are the object's (precision):
+/// a neighbour, or the object merged with a larger neighbour, falls below it.
+inline constexpr double kRightObjectPrecision = 0.5;
 
 /// One registration of the protocol, or one baseline on the same observation.
 struct EvalRow {
