@@ -207,9 +207,11 @@ TEST(EvalReport, SeamGapsRoundTripAndShowForThePartVariantsOnly) {
                                 << header_before(",grasps,grasps_held") << "\n"
                                 << line_without(later) << "\n";
   EXPECT_EQ(eval::read_rows_csv(dir / "v5.csv").size(), 1u);
-  std::ofstream(dir / "v7.csv") << header_before(",verdict,inlier_share") << "\n" << line_without(7 + 3) << "\n";
+  std::ofstream(dir / "v7.csv") << header_before(",verdict,inlier_share") << "\n"
+                                << line_without(7 + 3) << "\n";
   EXPECT_EQ(eval::read_rows_csv(dir / "v7.csv").size(), 1u);
-  std::ofstream(dir / "v8.csv") << header_before(",scene_cut,scene_overlap") << "\n" << line_without(3) << "\n";
+  std::ofstream(dir / "v8.csv") << header_before(",scene_cut,scene_overlap") << "\n"
+                                << line_without(3) << "\n";
   ASSERT_EQ(eval::read_rows_csv(dir / "v8.csv").size(), 1u);
   EXPECT_FALSE(eval::read_rows_csv(dir / "v8.csv")[0].scene);
   std::ofstream(dir / "other.csv") << header << ",extra\n" << line << ",1\n";
@@ -321,7 +323,8 @@ TEST(EvalReport, DepthScenesRoundTripAndShowTheRightObjectShareAndTheRatioToTheH
   EXPECT_DOUBLE_EQ(eval::mean_symmetric_rms_per_diagonal(back, "mugs", "holistic", false), 0.02);
   EXPECT_DOUBLE_EQ(eval::mean_symmetric_rms_per_diagonal(back, "mugs", "holistic", true), 0.03);
   // 4 scenes, 2 right; mean overlap (0.9 + 0 + 0.4 + 0) / 4 = 0.33; means over the three scenes both cuts
-  // registered: (2.4 + 30 + 4.6) / 3 = 12.33 and (2.0 + 3.0 + 1.0) / 3 = 2.00 (% of the diagonal), ratio 6.17.
+  // registered: (2.4 + 30 + 4.6) / 3 = 12.33 and (2.0 + 3.0 + 1.0) / 3 = 2.00 (% of the diagonal),
+  // ratio 6.17.
   const std::string tables = eval::markdown_report(back);
   EXPECT_NE(tables.find("\nDepth scenes (eval --scenes): "), std::string::npos) << tables;
   EXPECT_NE(tables.find("| mugs | holistic | 4 | 2 (50%) | 0.33 | 12.33 | 2.00 | 6.17 |"), std::string::npos)

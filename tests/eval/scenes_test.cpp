@@ -30,7 +30,8 @@ TEST(EvalScenes, TheSceneCutChoosesTheHeldOutMugAndRegistersNearlyAsWellAsTheHan
   // Full views only (no partial views, no sweeps, no baselines), 2 tested mugs, 3 scenes each.
   const Outcome result = run("eval " + data +
                              " --protocol quick --variants holistic --sweeps none --views 0 --no-baselines "
-                             "--threads 2 --scenes 3 --out " + out);
+                             "--threads 2 --scenes 3 --out " +
+                             out);
   ASSERT_EQ(result.exit_code, 0) << result.output;
   const std::vector<eval::EvalRow> rows = eval::read_rows_csv(dir / "eval" / "results.csv");
   // 2 tested mugs x (1 full view + 3 scenes x 2 cuts).
@@ -55,10 +56,12 @@ TEST(EvalScenes, TheSceneCutChoosesTheHeldOutMugAndRegistersNearlyAsWellAsTheHan
     // Both registrations land on the held-out mug in the camera frame: a truth left in the mug's own frame
     // (or in metres instead of data units) would be off by about its own diagonal, far above 10%.
     ASSERT_TRUE(std::isfinite(hand.errors.symmetric_rms_per_diagonal));
-    EXPECT_LT(hand.errors.symmetric_rms_per_diagonal, 0.10) << std::get<0>(key) << " scene " << std::get<1>(key);
+    EXPECT_LT(hand.errors.symmetric_rms_per_diagonal, 0.10)
+        << std::get<0>(key) << " scene " << std::get<1>(key);
     if (scene.scene->precision >= eval::kRightObjectPrecision) {
       EXPECT_GT(scene.scene->overlap, 0.8);  // the whole mug, not a piece of it
-      scene_sum += scene.errors.symmetric_rms_per_diagonal, hand_sum += hand.errors.symmetric_rms_per_diagonal;
+      scene_sum += scene.errors.symmetric_rms_per_diagonal,
+          hand_sum += hand.errors.symmetric_rms_per_diagonal;
     }
   }
   // The mug stands in the middle of the image, its neighbours 0.2 m to either side: the pick nearest the
@@ -72,7 +75,8 @@ TEST(EvalScenes, TheSceneCutChoosesTheHeldOutMugAndRegistersNearlyAsWellAsTheHan
   // The report: a Depth scenes table with the 6 scenes, and the full views' table without the scene rows.
   const std::string tables = read_text(dir / "eval" / "tables.md");
   EXPECT_NE(tables.find("\nDepth scenes (eval --scenes): "), std::string::npos) << tables;
-  EXPECT_NE(tables.find("| mugs | holistic | 6 | " + std::to_string(right) + " ("), std::string::npos) << tables;
+  EXPECT_NE(tables.find("| mugs | holistic | 6 | " + std::to_string(right) + " ("), std::string::npos)
+      << tables;
   double full = 0.0;
   for (const eval::EvalRow& row : rows)
     if (!row.scene) full += row.errors.symmetric_rms_per_diagonal / 2;
@@ -84,8 +88,10 @@ TEST(EvalScenes, TheSceneCutChoosesTheHeldOutMugAndRegistersNearlyAsWellAsTheHan
 
 TEST(EvalScenes, BadSceneSettingsAreRefusedWithOneLine) {
   testing::TempDir dir;
-  for (const char* flags : {"--scenes -1", "--scenes x", "--scene-size 0", "--scene-size 20", "--cluster-tolerance 0"}) {
-    const Outcome result = run("eval " + (dir / "none").string() + " --out " + (dir / "out").string() + " " + flags);
+  for (const char* flags :
+       {"--scenes -1", "--scenes x", "--scene-size 0", "--scene-size 20", "--cluster-tolerance 0"}) {
+    const Outcome result =
+        run("eval " + (dir / "none").string() + " --out " + (dir / "out").string() + " " + flags);
     EXPECT_EQ(result.exit_code, 2) << flags << ": " << result.output;
     EXPECT_FALSE(std::filesystem::exists(dir / "out")) << flags;
   }

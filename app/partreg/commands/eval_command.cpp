@@ -154,8 +154,11 @@ nlohmann::json scenes_json(const scene_eval::DepthSceneSettings& scenes) {
           {"elevations_degrees", scenes.elevations_degrees},
           {"distance", scenes.layout.distance},
           {"spacing", scenes.layout.spacing},
-          {"intrinsics", {{"fx", scenes.intrinsics.fx}, {"fy", scenes.intrinsics.fy},
-                          {"width", scenes.intrinsics.width}, {"height", scenes.intrinsics.height}}},
+          {"intrinsics",
+           {{"fx", scenes.intrinsics.fx},
+            {"fy", scenes.intrinsics.fy},
+            {"width", scenes.intrinsics.width},
+            {"height", scenes.intrinsics.height}}},
           {"cut", settings_json(core::option_values(scene::scene_options(), scenes.cut))}};
 }
 

@@ -392,8 +392,11 @@ std::vector<std::size_t> training_indices(const EvalInput& input, const std::map
 
 TestedInstance tested_view(const EvalInput& input, const std::map<std::string, int>& folds,
                            const TestCase& test) {
-  return {test.instance, test.fold, &test.truth.points, &test.truth.part, test.diagonal,
-          training_indices(input, folds, test.fold), nullptr};
+  TestedInstance tested;
+  tested.index = test.instance, tested.fold = test.fold, tested.diagonal = test.diagonal;
+  tested.truth = &test.truth.points, tested.truth_part = &test.truth.part;
+  tested.training = training_indices(input, folds, test.fold);
+  return tested;
 }
 
 std::size_t extra_rows(const EvalInput& input, const EvalSettings& settings,
@@ -483,7 +486,8 @@ std::vector<EvalRow> run_evaluation(const EvalInput& input, const EvalSettings& 
       TestedInstance tested = tested_view(input, folds, test);
       tested.correspondents = correspondents ? &*correspondents : nullptr;
       const int extra_jobs = settings.extra->jobs(input, tested);
-      const std::size_t extra_first = rows.size(), extra_per_job = settings.extra->rows_per_job(variants.size());
+      const std::size_t extra_first = rows.size(),
+                        extra_per_job = settings.extra->rows_per_job(variants.size());
       rows.resize(extra_first + static_cast<std::size_t>(extra_jobs) * extra_per_job);
       arena.execute([&] {
         tbb::parallel_for(0, extra_jobs, [&](int j) {

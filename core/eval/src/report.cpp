@@ -144,8 +144,8 @@ EvalRow parse_row(const std::vector<std::string>& f) {
   detail::parse_grasp_fields(f, kFormat5Columns, row);
   if (f.size() > kVerdictColumnsStart && !f[kVerdictColumnsStart].empty()) parse_verdict(row, f);
   if (f.size() > kVerdictColumnsEnd && !f[kVerdictColumnsEnd].empty())
-    row.scene = SceneCutScore{core::parse_enum<CutKind>(f[kVerdictColumnsEnd]), std::stod(f[kVerdictColumnsEnd + 1]),
-                              std::stod(f[kVerdictColumnsEnd + 2])};
+    row.scene = SceneCutScore{core::parse_enum<CutKind>(f[kVerdictColumnsEnd]),
+                              std::stod(f[kVerdictColumnsEnd + 1]), std::stod(f[kVerdictColumnsEnd + 2])};
   return row;
 }
 
@@ -601,7 +601,7 @@ struct SceneFigures {
 
 SceneFigures scene_figures(const std::vector<EvalRow>& rows, const std::string& category,
                            const std::string& variant) {
-  using Key = std::tuple<std::string, int, int>;  // instance, fold, scene
+  using Key = std::tuple<std::string, int, int>;                   // instance, fold, scene
   std::map<Key, std::pair<const EvalRow*, const EvalRow*>> pairs;  // scene cut, hand cut
   for (const EvalRow& r : rows)
     if (r.scene && r.category == category && r.variant == variant) {
@@ -626,13 +626,13 @@ SceneFigures scene_figures(const std::vector<EvalRow>& rows, const std::string& 
 // The depth scenes: the scene cut against the same depth image cut by hand, per category and variant.
 void scene_tables(std::ostringstream& out, const std::vector<EvalRow>& rows) {
   if (std::none_of(rows.begin(), rows.end(), [](const EvalRow& r) { return r.scene.has_value(); })) return;
-  out << "\nDepth scenes (eval --scenes): each held-out instance on a table between training instances, seen by "
-         "a depth camera; the scene cut (support plane removed, clusters, the one nearest the image centre) against "
-         "the same image cut by hand (the object's true mask), each registered about the table's normal. "
-         "Right object: at least "
+  out << "\nDepth scenes (eval --scenes): each held-out instance on a table between training instances, "
+         "seen by a depth camera; the scene cut (support plane removed, clusters, the one nearest the image "
+         "centre) against the same image cut by hand (the object's true mask), each registered about the "
+         "table's normal. Right object: at least "
       << kRightObjectPrecision
-      << " of the cut's pixels are the object's; overlap: the mean intersection over union of the scene cut's "
-         "pixels with the object's measured pixels (below 1: pieces of the object lost, or neighbours "
+      << " of the cut's pixels are the object's; overlap: the mean intersection over union of the scene "
+         "cut's pixels with the object's measured pixels (below 1: pieces of the object lost, or neighbours "
          "taken). Mean symmetric RMS, % of the diagonal, over the scenes where both cuts registered; scene / "
          "hand is the ratio of the two means.\n\n";
   header_row(out, "category",
@@ -644,9 +644,9 @@ void scene_tables(std::ostringstream& out, const std::vector<EvalRow>& rows) {
       const double scene = f.registered ? f.scene_sum / f.registered : std::nan("");
       const double hand = f.registered ? f.hand_sum / f.registered : std::nan("");
       out << "| " << category << " | " << variant << " | " << f.scenes << " | " << f.right << " ("
-          << cell(double(f.right) / f.scenes, 100, 0) << "%) | " << cell(f.overlap_sum / f.scenes, 1, 2) << " | "
-          << cell(scene, 100) << " | " << cell(hand, 100)
-          << " | " << cell(scene / hand, 1, 2) << " |\n";
+          << cell(double(f.right) / f.scenes, 100, 0) << "%) | " << cell(f.overlap_sum / f.scenes, 1, 2)
+          << " | " << cell(scene, 100) << " | " << cell(hand, 100) << " | " << cell(scene / hand, 1, 2)
+          << " |\n";
     }
 }
 

@@ -22,7 +22,7 @@ bool has_mesh(const core::TrainingInstance& instance) { return instance.mesh.fac
 // One rendered scene and what the held-out instance (object 0) is in it.
 struct RenderedScene {
   scene::RenderedDepth rendered;
-  scene::PixelMask mask;      // the held-out instance's pixels (first surface hit)
+  scene::PixelMask mask;  // the held-out instance's pixels (first surface hit)
   double metres_per_unit = 1.0;
   Eigen::Isometry3d T_camera_object;  // the held-out instance's frame -> camera frame, in its data units
 };
@@ -70,7 +70,8 @@ RenderedScene render_scene(const DepthSceneSettings& settings, const eval::EvalI
 
 // The cut's pixels against the object's measured pixels: intersection over union, and the share of the cut
 // on the object.
-eval::SceneCutScore score_cut(eval::CutKind kind, const scene::CameraPoints& cut, const RenderedScene& scene) {
+eval::SceneCutScore score_cut(eval::CutKind kind, const scene::CameraPoints& cut,
+                              const RenderedScene& scene) {
   const std::vector<float>& depth = scene.rendered.depth.metres;
   std::size_t object = 0, common = 0;
   for (std::size_t p = 0; p < depth.size(); ++p) object += scene.mask.selected[p] && depth[p] > 0;
@@ -96,11 +97,12 @@ struct CutTruth {
 };
 
 eval::EvalRow registered_row(const core::CategoryModel& model, const eval::EvalSettings& settings,
-                             const DepthSceneSettings& scenes, const scene::SceneCut& cut, core::Variant variant,
-                             const CutTruth& truth) {
+                             const DepthSceneSettings& scenes, const scene::SceneCut& cut,
+                             core::Variant variant, const CutTruth& truth) {
   core::RegistrationSettings registration = settings.registration;
   registration.variant = variant;
-  const core::RegistrationResult result = scene::register_cut(model, cut, registration, scenes.cut.registration);
+  const core::RegistrationResult result =
+      scene::register_cut(model, cut, registration, scenes.cut.registration);
   const Eigen::VectorXi* truth_part = truth.tested->truth_part;
   const bool truth_has_parts =
       !model.part_names.empty() && truth_part && truth_part->size() == truth.tested->truth->rows();
@@ -111,7 +113,8 @@ eval::EvalRow registered_row(const core::CategoryModel& model, const eval::EvalS
   // Correspondences are the material points' (as the protocol's own rows measure them).
   if (truth.correspondents)
     row.errors.correspondence_per_diagonal = core::correspondence_error(
-        core::deform_points(model, result, model.normalization.undo(model.canonical), {}, core::Follow::material),
+        core::deform_points(model, result, model.normalization.undo(model.canonical), {},
+                            core::Follow::material),
         *truth.correspondents, truth.tested->diagonal);
   if (variant != core::Variant::holistic) row.seam = core::seam_gap(model, result);
   if (model.canonical_mesh.faces.rows() > 0) row.mesh_stretch = result.figures.mesh_stretch;
@@ -137,7 +140,8 @@ void check_settings(const DepthSceneSettings& settings) {
   if (!(settings.object_size > 0 && settings.object_size < 10))
     throw UsageError("--scene-size: the held-out object's diagonal on the table is metres in (0, 10)");
   if (settings.neighbours < 0) throw UsageError("the neighbour count of a depth scene must be 0 or more");
-  if (settings.elevations_degrees.empty()) throw UsageError("depth scenes need at least one camera elevation");
+  if (settings.elevations_degrees.empty())
+    throw UsageError("depth scenes need at least one camera elevation");
   for (double elevation : settings.elevations_degrees)
     if (!(elevation > 0 && elevation <= 90))
       throw UsageError("camera elevations of depth scenes are degrees in (0, 90]");
@@ -151,8 +155,9 @@ int DepthScenes::jobs(const eval::EvalInput& input, const eval::TestedInstance& 
   return has_mesh(input.instances[tested.index]) ? settings_.scenes : 0;
 }
 
-std::vector<std::size_t> pick_neighbours(const eval::EvalInput& input, const std::vector<std::size_t>& training,
-                                         int count, std::uint64_t seed) {
+std::vector<std::size_t> pick_neighbours(const eval::EvalInput& input,
+                                         const std::vector<std::size_t>& training, int count,
+                                         std::uint64_t seed) {
   std::vector<std::size_t> candidates;
   for (std::size_t i : training)
     if (has_mesh(input.instances[i])) candidates.push_back(i);
@@ -167,13 +172,45 @@ std::vector<std::size_t> pick_neighbours(const eval::EvalInput& input, const std
   return candidates;
 }
 
+namespace {
+
+// One cut of the scene (the scene library's, or the hand cut through the true mask) registered with every
+// variant: rows[v] for variant v.
+void cut_and_register(eval::CutKind kind, const RenderedScene& scene, const DepthSceneSettings& scenes,
+                      const eval::EvalSettings& settings, const core::CategoryModel& model,
+                      const CutTruth& truth, const std::vector<core::Variant>& variants,
+                      eval::EvalRow* rows) {
+  const scene::PixelMask* mask = kind == eval::CutKind::hand ? &scene.mask : nullptr;
+  const scene::SceneView view = scene::depth_view(scene.rendered.depth, scenes.intrinsics, mask);
+  std::optional<scene::SceneCut> cut;
+  try {
+    cut = in_units(scene::cut_scene(view, {}, scenes.cut.segmentation), scene.metres_per_unit);
+  } catch (const InputError&) {
+    // No plane or no cluster: the scene cut chose nothing, which the right-object share counts.
+  }
+  for (std::size_t v = 0; v < variants.size(); ++v) {
+    rows[v] = failed_row();
+    if (cut) try {
+        rows[v] = registered_row(model, settings, scenes, *cut, variants[v], truth);
+      } catch (const InputError&) {
+        // Too few points to register: the row keeps no error.
+      }
+    rows[v].variant = core::enum_name(variants[v]);
+    rows[v].observed_points = cut ? static_cast<int>(cut->object.points.rows()) : 0;
+    rows[v].scene = cut ? score_cut(kind, cut->object, scene) : eval::SceneCutScore{kind, 0.0, 0.0};
+  }
+}
+
+}  // namespace
+
 void DepthScenes::run(const eval::EvalInput& input, const eval::EvalSettings& settings,
                       const core::CategoryModel& model, const eval::TestedInstance& tested, int job,
                       const std::vector<core::Variant>& variants, eval::EvalRow* rows) const {
   // Seeds of the scenes stay apart from the point-sampled views' (which mix in view + 1 >= 0).
   const std::uint64_t seed =
       eval::mix_seed(eval::mix_seed(eval::mix_seed(settings.seed, tested.index), 0x5ce9e5ULL), job);
-  const Eigen::Vector3d up = core::with_model_defaults(settings.registration, model).initialisation.up.value();
+  const Eigen::Vector3d up =
+      core::with_model_defaults(settings.registration, model).initialisation.up.value();
   const std::vector<std::size_t> neighbours =
       pick_neighbours(input, tested.training, settings_.neighbours, eval::mix_seed(seed, 1));
   const RenderedScene scene = render_scene(settings_, input, tested.index, neighbours, up, job, seed);
@@ -182,34 +219,20 @@ void DepthScenes::run(const eval::EvalInput& input, const eval::EvalSettings& se
       tested.correspondents ? std::optional(eval::moved_by(*tested.correspondents, scene.T_camera_object))
                             : std::nullopt;
   const CutTruth cut_truth{&truth, correspondents ? &*correspondents : nullptr, &tested};
+  // The scene cut's rows (one per variant), then the hand cut's.
+  cut_and_register(eval::CutKind::scene, scene, settings_, settings, model, cut_truth, variants, rows);
+  cut_and_register(eval::CutKind::hand, scene, settings_, settings, model, cut_truth, variants,
+                   rows + variants.size());
   // The camera's direction from the object's box centre, in the object's frame (as a partial view's).
   const Eigen::Vector3d centre =
       ((tested.truth->colwise().minCoeff() + tested.truth->colwise().maxCoeff()) / 2).transpose();
   const Eigen::Vector3d direction = (scene.T_camera_object.inverse().translation() - centre).normalized();
-  for (eval::CutKind kind : {eval::CutKind::scene, eval::CutKind::hand}) {
-    const scene::SceneView view =
-        scene::depth_view(scene.rendered.depth, settings_.intrinsics, kind == eval::CutKind::hand ? &scene.mask : nullptr);
-    std::optional<scene::SceneCut> cut;
-    try {
-      cut = in_units(scene::cut_scene(view, {}, settings_.cut.segmentation), scene.metres_per_unit);
-    } catch (const InputError&) {
-      // No plane or no cluster: the scene cut chose nothing, which the right-object share counts.
-    }
-    for (std::size_t v = 0; v < variants.size(); ++v) {
-      eval::EvalRow row = failed_row();
-      if (cut) try {
-          row = registered_row(model, settings, settings_, *cut, variants[v], cut_truth);
-        } catch (const InputError&) {
-          // Too few points to register: the row keeps no error.
-        }
-      row.category = input.category, row.instance = input.instances[tested.index].name;
-      row.canonical = model.training.canonical, row.variant = core::enum_name(variants[v]);
-      row.fold = tested.fold, row.view = job, row.direction = direction;
-      row.diagonal = tested.diagonal, row.errors.diagonal = tested.diagonal;
-      row.observed_points = cut ? static_cast<int>(cut->object.points.rows()) : 0;
-      row.scene = cut ? score_cut(kind, cut->object, scene) : eval::SceneCutScore{kind, 0.0, 0.0};
-      rows[(kind == eval::CutKind::scene ? 0 : variants.size()) + v] = std::move(row);
-    }
+  for (std::size_t r = 0; r < rows_per_job(variants.size()); ++r) {
+    eval::EvalRow& row = rows[r];
+    row.category = input.category, row.instance = input.instances[tested.index].name;
+    row.canonical = model.training.canonical, row.fold = tested.fold, row.view = job,
+    row.direction = direction;
+    row.diagonal = tested.diagonal, row.errors.diagonal = tested.diagonal;
   }
 }
 

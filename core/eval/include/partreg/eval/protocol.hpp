@@ -25,7 +25,7 @@ namespace partreg::eval {
 
 /// How the object of a depth-scene row was cut out of its depth image (scene_eval/depth_scenes.hpp).
 enum class CutKind {
-  scene,  ///< as `register --depth` cuts it: support plane removed, clusters, the one nearest the image centre
+  scene,  ///< as `register --depth` cuts it: plane removed, clusters, the one nearest the image centre
   hand    ///< by hand: the held-out object's own measured pixels (its true mask)
 };
 
@@ -141,7 +141,7 @@ struct EvalRow {
   std::string category, instance, canonical;
   std::string variant;  ///< a core::Variant's name, or a Baseline's (baselines.hpp)
   int fold = 0;
-  int view = -1;  ///< -1: the full view; else the index of the partial view's direction (or of the depth scene)
+  int view = -1;  ///< -1: the full view; else the partial view's direction index (or the depth scene's)
   Eigen::Vector3d direction = Eigen::Vector3d::Zero();  ///< unit direction to the camera (zero for full)
   Perturbation perturbation = Perturbation::none;
   int level_index = -1;      ///< which of the paper's levels (0-4), -1 without perturbation
@@ -177,7 +177,7 @@ inline bool in_views(const EvalRow& row, bool partial) { return !row.scene && (r
 struct TestedInstance {
   std::size_t index = 0;  ///< into EvalInput::instances
   int fold = 0;
-  const core::Points* truth = nullptr;         ///< what its registrations are scored against
+  const core::Points* truth = nullptr;          ///< what its registrations are scored against
   const Eigen::VectorXi* truth_part = nullptr;  ///< the truth's own part per point; null or empty: none
   double diagonal = 0.0;                        ///< D of the truth (truth_errors.hpp)
   std::vector<std::size_t> training;            ///< the fold's training instances (into EvalInput::instances)
@@ -194,8 +194,8 @@ class ExtraObservations {
   virtual int jobs(const EvalInput& input, const TestedInstance& tested) const = 0;
   /// Rows each job fills, for this many variants.
   virtual std::size_t rows_per_job(std::size_t variants) const = 0;
-  /// Runs job `job` of `tested` on the fold's `model`, filling rows_per_job(variants.size()) rows. Called from
-  /// several threads at once.
+  /// Runs job `job` of `tested` on the fold's `model`, filling rows_per_job(variants.size()) rows. Called
+  /// from several threads at once.
   virtual void run(const EvalInput& input, const EvalSettings& settings, const core::CategoryModel& model,
                    const TestedInstance& tested, int job, const std::vector<core::Variant>& variants,
                    EvalRow* rows) const = 0;

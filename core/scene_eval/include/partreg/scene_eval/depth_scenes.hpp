@@ -31,10 +31,10 @@ struct DepthSceneSettings {
   /// Camera elevations above the table (degrees), used in turn by the scenes: each scene also turns every
   /// object by its own seeded yaw, so the held-out instance is seen from all round.
   std::vector<double> elevations_degrees = {45.0, 30.0, 60.0};
-  scene::TableLayout layout;       ///< distance and spacing (m); the elevation and seed are the scene's
-  scene::Intrinsics intrinsics;    ///< `partreg scene`'s camera: 640x480, fx = fy = 615
-  scene::SensorSettings sensor;    ///< noise, quantisation, lost pixels; the seed is the scene's
-  scene::SceneSettings cut;        ///< the cut and its registration, as `register --depth` takes them
+  scene::TableLayout layout;     ///< distance and spacing (m); the elevation and seed are the scene's
+  scene::Intrinsics intrinsics;  ///< `partreg scene`'s camera: 640x480, fx = fy = 615
+  scene::SensorSettings sensor;  ///< noise, quantisation, lost pixels; the seed is the scene's
+  scene::SceneSettings cut;      ///< the cut and its registration, as `register --depth` takes them
 };
 
 /// UsageError (one line) for settings out of range: a negative scene count, a size outside (0, 10) m, no
@@ -58,7 +58,8 @@ class DepthScenes : public eval::ExtraObservations {
 
 /// Which training instances stand beside the held-out one in a scene: `count` distinct ones (all of them when
 /// there are fewer) drawn by `seed` from `training`, skipping any without a mesh.
-std::vector<std::size_t> pick_neighbours(const eval::EvalInput& input, const std::vector<std::size_t>& training,
-                                         int count, std::uint64_t seed);
+std::vector<std::size_t> pick_neighbours(const eval::EvalInput& input,
+                                         const std::vector<std::size_t>& training, int count,
+                                         std::uint64_t seed);
 
 }  // namespace partreg::scene_eval
