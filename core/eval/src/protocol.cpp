@@ -406,6 +406,24 @@ std::size_t extra_rows(const EvalInput& input, const EvalSettings& settings,
          settings.extra->rows_per_job(variants);
 }
 
+// The extra observations of one tested instance (EvalSettings::extra) on the fold's model, their rows appended
+// to `rows` in job order (after the instance's own); `finished` hears of each job's rows as it ends.
+void run_extra(const EvalInput& input, const EvalSettings& settings, const core::CategoryModel& model,
+               const TestedInstance& tested, const std::vector<core::Variant>& variants, tbb::task_arena& arena,
+               std::vector<EvalRow>& rows, const std::function<void(std::size_t)>& finished) {
+  const int jobs = settings.extra->jobs(input, tested);
+  const std::size_t first = rows.size(), per_job = settings.extra->rows_per_job(variants.size());
+  rows.resize(first + static_cast<std::size_t>(jobs) * per_job);
+  arena.execute([&] {
+    tbb::parallel_for(0, jobs, [&](int j) {
+      const core::ThreadBudget one(1);  // the arena holds the budget, as for the instance's own jobs
+      settings.extra->run(input, settings, model, tested, j, variants,
+                          &rows[first + static_cast<std::size_t>(j) * per_job]);
+      finished(per_job);
+    });
+  });
+}
+
 std::size_t index_of(const EvalInput& input, const std::string& name) {
   for (std::size_t i = 0; i < input.instances.size(); ++i)
     if (input.instances[i].name == name) return i;
@@ -482,24 +500,14 @@ std::vector<EvalRow> run_evaluation(const EvalInput& input, const EvalSettings& 
         });
       });
       if (!settings.extra) continue;
-      // The extra observations' rows follow the instance's own, in job order.
       TestedInstance tested = tested_view(input, folds, test);
       tested.correspondents = correspondents ? &*correspondents : nullptr;
-      const int extra_jobs = settings.extra->jobs(input, tested);
-      const std::size_t extra_first = rows.size(),
-                        extra_per_job = settings.extra->rows_per_job(variants.size());
-      rows.resize(extra_first + static_cast<std::size_t>(extra_jobs) * extra_per_job);
-      arena.execute([&] {
-        tbb::parallel_for(0, extra_jobs, [&](int j) {
-          const core::ThreadBudget one(1);
-          settings.extra->run(input, settings, model, tested, j, variants,
-                              &rows[extra_first + static_cast<std::size_t>(j) * extra_per_job]);
-          const std::size_t now = done += extra_per_job;
-          if (progress) {
-            const std::lock_guard<std::mutex> lock(progress_mutex);
-            progress({now, total, ""});
-          }
-        });
+      run_extra(input, settings, model, tested, variants, arena, rows, [&](std::size_t finished) {
+        const std::size_t now = done += finished;
+        if (progress) {
+          const std::lock_guard<std::mutex> lock(progress_mutex);
+          progress({now, total, ""});
+        }
       });
     }
   }
