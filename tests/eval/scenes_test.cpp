@@ -60,6 +60,10 @@ TEST(EvalScenes, TheSceneCutChoosesTheHeldOutMugAndRegistersNearlyAsWellAsTheHan
         << std::get<0>(key) << " scene " << std::get<1>(key);
     if (scene.scene->precision >= eval::kRightObjectPrecision) {
       EXPECT_GT(scene.scene->overlap, 0.8);  // the whole mug, not a piece of it
+      // ... but never all of it: the foot within the plane distance of the table goes with the plane (an
+      // overlap of 1 would say the cut's pixels were never compared with the mask's).
+      EXPECT_LT(scene.scene->overlap, 0.99);
+      EXPECT_LT(scene.observed_points, hand.observed_points);
       scene_sum += scene.errors.symmetric_rms_per_diagonal,
           hand_sum += hand.errors.symmetric_rms_per_diagonal;
     }
