@@ -148,6 +148,12 @@ if wanted noise-outliers full && have_data kettles noise-outliers && have_data m
   evaluate noise-outliers "Sweeps" "kettles $data/kettles $level5" "$labelled_mugs $level5"
   finish results.md noise-outliers
 fi
+if wanted depth-scenes full && have_data mugs depth-scenes; then
+  begin
+  evaluate depth-scenes "Depth scenes" \
+    "mugs $data/mugs --protocol paper --variants holistic --sweeps none --views 0 --no-baselines --scenes 3"
+  finish results.md depth-scenes
+fi
 if wanted paper full && have_data kettles paper; then
   begin
   paper="--protocol paper --no-baselines"

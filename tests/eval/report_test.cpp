@@ -3,6 +3,7 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <fstream>
 
 #include "partreg/core/errors.hpp"
@@ -187,9 +188,9 @@ TEST(EvalReport, SeamGapsRoundTripAndShowForThePartVariantsOnly) {
   for (std::string next; std::getline(in, next);) EXPECT_EQ(fields(next), fields(header)) << next;
   EXPECT_EQ(header.find('#'), std::string::npos);
   const auto header_before = [&](const char* column) { return header.substr(0, header.rfind(column)); };
-  // Every trailing field of this row is empty: the older layouts drop them, and the 7 grasp and 7 verdict
-  // columns after them.
-  const std::size_t later = 7 + 7;
+  // Every trailing field of this row is empty: the older layouts drop them, and the 7 grasp, 7 verdict and 3
+  // depth-scene columns after them.
+  const std::size_t later = 7 + 7 + 3;
   const auto line_without = [&](std::size_t empty_fields) {
     return line.substr(0, line.size() - empty_fields);
   };
@@ -206,8 +207,13 @@ TEST(EvalReport, SeamGapsRoundTripAndShowForThePartVariantsOnly) {
                                 << header_before(",grasps,grasps_held") << "\n"
                                 << line_without(later) << "\n";
   EXPECT_EQ(eval::read_rows_csv(dir / "v5.csv").size(), 1u);
-  std::ofstream(dir / "v7.csv") << header_before(",verdict,inlier_share") << "\n" << line_without(7) << "\n";
+  std::ofstream(dir / "v7.csv") << header_before(",verdict,inlier_share") << "\n"
+                                << line_without(7 + 3) << "\n";
   EXPECT_EQ(eval::read_rows_csv(dir / "v7.csv").size(), 1u);
+  std::ofstream(dir / "v8.csv") << header_before(",scene_cut,scene_overlap") << "\n"
+                                << line_without(3) << "\n";
+  ASSERT_EQ(eval::read_rows_csv(dir / "v8.csv").size(), 1u);
+  EXPECT_FALSE(eval::read_rows_csv(dir / "v8.csv")[0].scene);
   std::ofstream(dir / "other.csv") << header << ",extra\n" << line << ",1\n";
   EXPECT_THROW(eval::read_rows_csv(dir / "other.csv"), InputError);
   for (const char* file : {"v2.csv", "v3.csv", "v4.csv"}) {
@@ -276,6 +282,55 @@ TEST(EvalReport, OwnPartFiguresRoundTripAndShowPerPartAndTheirMean) {
                         "|---|---|\n| body | 2.00 |\n| handle | 20.00 |\n| mean over parts | 11.00 |"),
             std::string::npos)
       << tables;
+}
+
+eval::EvalRow scene_row(const std::string& instance, int scene, eval::CutKind cut, double overlap,
+                        double precision, double rms) {
+  eval::EvalRow r = rms_row("holistic", scene, rms);
+  r.instance = instance;
+  r.scene = eval::SceneCutScore{cut, overlap, precision};
+  return r;
+}
+
+TEST(EvalReport, DepthScenesRoundTripAndShowTheRightObjectShareAndTheRatioToTheHandCut) {
+  using eval::CutKind;
+  // Three scenes of mug_1: the scene cut took the whole mug in the first (overlap 0.9), a neighbour in the
+  // second (overlap and precision 0), a piece of the mug in the third (overlap 0.4, every pixel the mug's:
+  // the right object). One scene of mug_2 whose scene cut found nothing (NaN error): it counts as a scene, a
+  // wrong choice, and leaves the means alone.
+  std::vector<eval::EvalRow> rows = {rms_row("holistic", -1, 0.02),  // a full view, and a partial view 0
+                                     rms_row("holistic", 0, 0.03),
+                                     scene_row("mug_1", 0, CutKind::scene, 0.9, 0.95, 0.024),
+                                     scene_row("mug_1", 0, CutKind::hand, 1.0, 1.0, 0.020),
+                                     scene_row("mug_1", 1, CutKind::scene, 0.0, 0.0, 0.300),
+                                     scene_row("mug_1", 1, CutKind::hand, 1.0, 1.0, 0.030),
+                                     scene_row("mug_1", 2, CutKind::scene, 0.4, 1.0, 0.046),
+                                     scene_row("mug_1", 2, CutKind::hand, 1.0, 1.0, 0.010),
+                                     scene_row("mug_2", 0, CutKind::scene, 0.0, 0.0, std::nan("")),
+                                     scene_row("mug_2", 0, CutKind::hand, 1.0, 1.0, 0.025)};
+  testing::TempDir dir;
+  eval::write_rows_csv(dir / "r.csv", rows);
+  const std::vector<eval::EvalRow> back = eval::read_rows_csv(dir / "r.csv");
+  ASSERT_EQ(back.size(), rows.size());
+  EXPECT_FALSE(back[0].scene);
+  ASSERT_TRUE(back[2].scene);
+  EXPECT_EQ(back[2].scene->cut, CutKind::scene);
+  EXPECT_DOUBLE_EQ(back[2].scene->overlap, 0.9);
+  EXPECT_DOUBLE_EQ(back[2].scene->precision, 0.95);
+  EXPECT_EQ(back[3].scene->cut, CutKind::hand);
+  EXPECT_TRUE(std::isnan(back[8].errors.symmetric_rms_per_diagonal));
+  // The point-sampled views' tables leave the scene rows out (scene 0 is not partial view 0).
+  EXPECT_DOUBLE_EQ(eval::mean_symmetric_rms_per_diagonal(back, "mugs", "holistic", false), 0.02);
+  EXPECT_DOUBLE_EQ(eval::mean_symmetric_rms_per_diagonal(back, "mugs", "holistic", true), 0.03);
+  // 4 scenes, 2 right; mean overlap (0.9 + 0 + 0.4 + 0) / 4 = 0.33; means over the three scenes both cuts
+  // registered: (2.4 + 30 + 4.6) / 3 = 12.33 and (2.0 + 3.0 + 1.0) / 3 = 2.00 (% of the diagonal),
+  // ratio 6.17.
+  const std::string tables = eval::markdown_report(back);
+  EXPECT_NE(tables.find("\nDepth scenes (eval --scenes): "), std::string::npos) << tables;
+  EXPECT_NE(tables.find("| mugs | holistic | 4 | 2 (50%) | 0.33 | 12.33 | 2.00 | 6.17 |"), std::string::npos)
+      << tables;
+  // No scene rows, no table.
+  EXPECT_EQ(eval::markdown_report({rows[0], rows[1]}).find("Depth scenes"), std::string::npos);
 }
 
 TEST(EvalReport, ACsvFromElsewhereIsRefusedWithItsName) {

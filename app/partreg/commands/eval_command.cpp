@@ -25,6 +25,8 @@
 #include "partreg/eval/report.hpp"
 #include "partreg/io/cloud_io.hpp"
 #include "partreg/io/dataset.hpp"
+#include "partreg/scene/scene_options.hpp"
+#include "partreg/scene_eval/depth_scenes.hpp"
 
 namespace partreg::app {
 namespace fs = std::filesystem;
@@ -45,6 +47,7 @@ struct EvalOptions {
   int grasp_count = 30;
   io::DatasetOptions dataset;
   eval::EvalSettings settings;
+  scene_eval::DepthSceneSettings scenes;  // --scenes N > 0: depth scenes beside the point-sampled views
 };
 
 void parse_shard(const std::string& text, eval::EvalSettings& settings) {
@@ -138,6 +141,25 @@ void configure(EvalOptions& options) {
   }
   if (settings.registration.initialisation.up) settings.training.up = *settings.registration.initialisation.up;
   parse_shard(options.shard, settings);
+  scene_eval::check_settings(options.scenes);
+  if (options.scenes.scenes > 0) settings.extra = std::make_shared<scene_eval::DepthScenes>(options.scenes);
+}
+
+// run.json's record of the depth scenes (null when none ran).
+nlohmann::json scenes_json(const scene_eval::DepthSceneSettings& scenes) {
+  if (scenes.scenes == 0) return nullptr;
+  return {{"per_instance", scenes.scenes},
+          {"object_size", scenes.object_size},
+          {"neighbours", scenes.neighbours},
+          {"elevations_degrees", scenes.elevations_degrees},
+          {"distance", scenes.layout.distance},
+          {"spacing", scenes.layout.spacing},
+          {"intrinsics",
+           {{"fx", scenes.intrinsics.fx},
+            {"fy", scenes.intrinsics.fy},
+            {"width", scenes.intrinsics.width},
+            {"height", scenes.intrinsics.height}}},
+          {"cut", settings_json(core::option_values(scene::scene_options(), scenes.cut))}};
 }
 
 // results.csv, tables.md and the sweep plots of every category, into `folder`.
@@ -195,6 +217,7 @@ void run_eval(EvalOptions& options) {
                                          : nlohmann::json(nullptr)},
       {"samples", options.dataset.points_per_instance},
       {"truth_samples", options.settings.truth_points},
+      {"depth_scenes", scenes_json(options.scenes)},
       // The settings every row used (a row's variant and viewpoint are its own), and every fold's training.
       {"registration", settings_json(core::registration_option_values(options.settings.registration),
                                      {"variant", "viewpoint"})},
@@ -265,6 +288,18 @@ void add_eval_command(CLI::App& app) {
       ->delimiter(',');
   command->add_flag("--wide-rotation", o->wide_rotation,
                     "the rotation sweep goes on past the paper's 0.65 rad, up to pi/2");
+  command
+      ->add_option("--scenes", o->scenes.scenes,
+                   "depth scenes per tested instance: on a table beside two training instances, cut out as "
+                   "register --depth cuts it and by hand (its true mask); 0 = none")
+      ->capture_default_str()
+      ->check(CLI::Range(0, 1000));
+  command
+      ->add_option("--scene-size", o->scenes.object_size,
+                   "the tested instance's bounding-box diagonal on the scene's table (m)")
+      ->capture_default_str();
+  // The scene cut's settings, as register --depth takes them.
+  add_scene_flags(command, o->scenes.cut);
   command->add_option("--shard", o->shard, "run only shard i of n (tested instances dealt round-robin)")
       ->capture_default_str();
   // Every registration setting but the variant (one row per --variants entry) and the viewpoint (each

@@ -94,7 +94,7 @@ void grasp_tables(std::ostringstream& out, const std::vector<EvalRow>& rows) {
       for (bool perturbed : {false, true}) {
         std::map<std::string, std::pair<int, int>> totals;
         for (const EvalRow& r : rows)
-          if (r.grasps && r.category == category && (r.view >= 0) == partial &&
+          if (r.grasps && r.category == category && in_views(r, partial) &&
               (r.perturbation != Perturbation::none) == perturbed)
             totals[r.variant].first += r.grasps->held, totals[r.variant].second += r.grasps->count;
         if (totals.empty()) continue;
@@ -134,7 +134,7 @@ void grasp_tables(std::ostringstream& out, const std::vector<EvalRow>& rows) {
         int n = 0;
         for (const EvalRow& r : rows)
           if (r.grasps && r.grasps->frame_error_median_degrees && r.category == category && r.variant == v &&
-              (r.view >= 0) == partial && r.perturbation == Perturbation::none)
+              in_views(r, partial) && r.perturbation == Perturbation::none)
             median += *r.grasps->frame_error_median_degrees, p90 += *r.grasps->frame_error_p90_degrees, ++n;
         std::ostringstream cell;
         if (n > 0) cell << std::fixed << std::setprecision(1) << median / n << " / " << p90 / n;

@@ -54,13 +54,7 @@ struct Job {
   int level_index = -1;
 };
 
-std::uint64_t mix(std::uint64_t seed, std::uint64_t value) {
-  // splitmix64 step: seeds of neighbouring jobs are unrelated, and a job's seed depends only on what it is.
-  std::uint64_t z = seed + 0x9e3779b97f4a7c15ULL + value * 0xbf58476d1ce4e5b9ULL;
-  z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ULL;
-  z = (z ^ (z >> 27)) * 0x94d049bb133111ebULL;
-  return z ^ (z >> 31);
-}
+std::uint64_t mix(std::uint64_t seed, std::uint64_t value) { return mix_seed(seed, value); }
 
 // The observations the sweeps perturb: the full view and `sweep_views` partial views spread evenly over the
 // direction list (every k-th), so that they look at the object from all round.
@@ -226,6 +220,9 @@ void run_job(const EvalInput& input, const EvalSettings& settings, const FoldCon
                    seconds,
                    std::nullopt,
                    std::nullopt,
+                   std::nullopt,
+                   std::nullopt,
+                   std::nullopt,
                    std::nullopt};
   };
   // The truth's own parts (part files, or a labels file of its own) score each part against its own.
@@ -286,6 +283,14 @@ void run_job(const EvalInput& input, const EvalSettings& settings, const FoldCon
 }
 
 }  // namespace
+
+std::uint64_t mix_seed(std::uint64_t seed, std::uint64_t value) {
+  // splitmix64 step: seeds of neighbouring jobs are unrelated, and a job's seed depends only on what it is.
+  std::uint64_t z = seed + 0x9e3779b97f4a7c15ULL + value * 0xbf58476d1ce4e5b9ULL;
+  z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ULL;
+  z = (z ^ (z >> 27)) * 0x94d049bb133111ebULL;
+  return z ^ (z >> 31);
+}
 
 std::vector<int> planned_levels(Perturbation kind, const Protocol& protocol) {
   const int count = static_cast<int>(sweep_levels(kind).size());
@@ -374,6 +379,51 @@ std::vector<core::TrainingInstance> training_set(const EvalInput& input,
   return training;
 }
 
+// The fold's training instances as indices (TestedInstance::training).
+std::vector<std::size_t> training_indices(const EvalInput& input, const std::map<std::string, int>& folds,
+                                          int fold) {
+  std::vector<std::size_t> training;
+  for (std::size_t i = 0; i < input.instances.size(); ++i) {
+    const auto found = folds.find(input.instances[i].name);
+    if (found == folds.end() || found->second != fold) training.push_back(i);
+  }
+  return training;
+}
+
+TestedInstance tested_view(const EvalInput& input, const std::map<std::string, int>& folds,
+                           const TestCase& test) {
+  TestedInstance tested;
+  tested.index = test.instance, tested.fold = test.fold, tested.diagonal = test.diagonal;
+  tested.truth = &test.truth.points, tested.truth_part = &test.truth.part;
+  tested.training = training_indices(input, folds, test.fold);
+  return tested;
+}
+
+std::size_t extra_rows(const EvalInput& input, const EvalSettings& settings,
+                       const std::map<std::string, int>& folds, const TestCase& test, std::size_t variants) {
+  if (!settings.extra) return 0;
+  return static_cast<std::size_t>(settings.extra->jobs(input, tested_view(input, folds, test))) *
+         settings.extra->rows_per_job(variants);
+}
+
+// The extra observations of one tested instance (EvalSettings::extra) on the fold's model, their rows appended
+// to `rows` in job order (after the instance's own); `finished` hears of each job's rows as it ends.
+void run_extra(const EvalInput& input, const EvalSettings& settings, const core::CategoryModel& model,
+               const TestedInstance& tested, const std::vector<core::Variant>& variants, tbb::task_arena& arena,
+               std::vector<EvalRow>& rows, const std::function<void(std::size_t)>& finished) {
+  const int jobs = settings.extra->jobs(input, tested);
+  const std::size_t first = rows.size(), per_job = settings.extra->rows_per_job(variants.size());
+  rows.resize(first + static_cast<std::size_t>(jobs) * per_job);
+  arena.execute([&] {
+    tbb::parallel_for(0, jobs, [&](int j) {
+      const core::ThreadBudget one(1);  // the arena holds the budget, as for the instance's own jobs
+      settings.extra->run(input, settings, model, tested, j, variants,
+                          &rows[first + static_cast<std::size_t>(j) * per_job]);
+      finished(per_job);
+    });
+  });
+}
+
 std::size_t index_of(const EvalInput& input, const std::string& name) {
   for (std::size_t i = 0; i < input.instances.size(); ++i)
     if (input.instances[i].name == name) return i;
@@ -397,7 +447,8 @@ std::vector<EvalRow> run_evaluation(const EvalInput& input, const EvalSettings& 
   for (const std::string& name : tested) {
     TestCase test =
         make_test_case(input, index_of(input, name), folds.at(name), settings, directions, progress);
-    total += plan_jobs(test, settings.protocol).size() * rows_per_job(settings, variants);
+    total += plan_jobs(test, settings.protocol).size() * rows_per_job(settings, variants) +
+             extra_rows(input, settings, folds, test, variants.size());
     tests_by_fold[test.fold].push_back(std::move(test));
   }
 
@@ -447,6 +498,16 @@ std::vector<EvalRow> run_evaluation(const EvalInput& input, const EvalSettings& 
             progress({now, total, ""});
           }
         });
+      });
+      if (!settings.extra) continue;
+      TestedInstance tested = tested_view(input, folds, test);
+      tested.correspondents = correspondents ? &*correspondents : nullptr;
+      run_extra(input, settings, model, tested, variants, arena, rows, [&](std::size_t finished) {
+        const std::size_t now = done += finished;
+        if (progress) {
+          const std::lock_guard<std::mutex> lock(progress_mutex);
+          progress({now, total, ""});
+        }
       });
     }
   }

@@ -8,6 +8,7 @@
 #include <map>
 #include <set>
 #include <sstream>
+#include <tuple>
 
 #include "grasp_report.hpp"
 #include "partreg/core/errors.hpp"
@@ -23,7 +24,8 @@ namespace {
 // number (kRowsFormat: raised when a column changes meaning). Earlier layouts started with a "# partreg
 // evaluation rows, format N" line and added columns at the end: 3 the two seam-gap columns, 4 the own-part
 // figures, 5 the mesh stretch; plain files add the grasp columns (7), then the verdict and the truth-free
-// figures it was judged by (8). They are still read (their missing figures stay empty).
+// figures it was judged by (8), then the depth scenes' cut and its overlap and precision against the true
+// mask (9). They are still read (their missing figures stay empty).
 #define PARTREG_FORMAT_2_COLUMNS                                                                      \
   "category,instance,canonical,fold,variant,view,direction_x,direction_y,direction_z,perturbation,"   \
   "level_index,paper_level,level,diagonal,observed_points,eq5,eq5_per_diagonal2,reverse_eq5,"         \
@@ -43,8 +45,12 @@ struct CsvFormat {
 constexpr std::size_t kFormat2Columns = 24, kFormat3Columns = 26, kFormat4Columns = 28, kFormat5Columns = 29;
 constexpr std::size_t kVerdictColumnsStart = kFormat5Columns + detail::kGraspColumnCount;
 constexpr std::size_t kVerdictColumnsEnd = kVerdictColumnsStart + 7;
+#define PARTREG_SCENE_COLUMNS ",scene_cut,scene_overlap,scene_precision"
+constexpr std::size_t kSceneColumnsEnd = kVerdictColumnsEnd + 3;
 // The format written first, then the older ones read.
 constexpr CsvFormat kFormats[] = {
+    {"", PARTREG_FORMAT_5_COLUMNS PARTREG_GRASP_COLUMNS PARTREG_VERDICT_COLUMNS PARTREG_SCENE_COLUMNS,
+     kSceneColumnsEnd},
     {"", PARTREG_FORMAT_5_COLUMNS PARTREG_GRASP_COLUMNS PARTREG_VERDICT_COLUMNS, kVerdictColumnsEnd},
     {"", PARTREG_FORMAT_5_COLUMNS PARTREG_GRASP_COLUMNS, kVerdictColumnsStart},
     {"", PARTREG_FORMAT_5_COLUMNS, kFormat5Columns},
@@ -52,6 +58,7 @@ constexpr CsvFormat kFormats[] = {
     {"# partreg evaluation rows, format 4", PARTREG_FORMAT_4_COLUMNS, kFormat4Columns},
     {"# partreg evaluation rows, format 3", PARTREG_FORMAT_3_COLUMNS, kFormat3Columns},
     {"# partreg evaluation rows, format 2", PARTREG_FORMAT_2_COLUMNS, kFormat2Columns}};
+#undef PARTREG_SCENE_COLUMNS
 #undef PARTREG_VERDICT_COLUMNS
 #undef PARTREG_FORMAT_5_COLUMNS
 #undef PARTREG_FORMAT_4_COLUMNS
@@ -136,10 +143,11 @@ EvalRow parse_row(const std::vector<std::string>& f) {
   if (f.size() > kFormat4Columns && !f[28].empty()) row.mesh_stretch = std::stod(f[28]);
   detail::parse_grasp_fields(f, kFormat5Columns, row);
   if (f.size() > kVerdictColumnsStart && !f[kVerdictColumnsStart].empty()) parse_verdict(row, f);
+  if (f.size() > kVerdictColumnsEnd && !f[kVerdictColumnsEnd].empty())
+    row.scene = SceneCutScore{core::parse_enum<CutKind>(f[kVerdictColumnsEnd]),
+                              std::stod(f[kVerdictColumnsEnd + 1]), std::stod(f[kVerdictColumnsEnd + 2])};
   return row;
 }
-
-bool is_partial(const EvalRow& row) { return row.view >= 0; }
 
 // Mean of `value` over the rows `keep` accepts; NaN for none.
 template <class Keep, class Value>
@@ -162,7 +170,7 @@ double clean_mean(const std::vector<EvalRow>& rows, const std::string& category,
   return mean_of(
       rows,
       [&](const EvalRow& r) {
-        return r.category == category && r.variant == method && is_partial(r) == partial &&
+        return r.category == category && r.variant == method && in_views(r, partial) &&
                r.perturbation == Perturbation::none;
       },
       value);
@@ -248,6 +256,10 @@ void write_rows_csv(const std::filesystem::path& path, const std::vector<EvalRow
     if (r.mesh_stretch) out << *r.mesh_stretch;
     out << detail::grasp_fields(r);
     write_verdict(out, r);
+    if (r.scene)
+      out << ',' << core::enum_name(r.scene->cut) << ',' << r.scene->overlap << ',' << r.scene->precision;
+    else
+      out << ",,,";
     out << '\n';
   }
   if (!out.flush()) throw InputError("cannot write " + path.string());
@@ -300,7 +312,7 @@ double mean_eq5_per_diagonal2(const std::vector<EvalRow>& rows, const std::strin
   return mean_of(
       rows,
       [&](const EvalRow& r) {
-        return r.category == category && r.variant == variant && is_partial(r) == partial &&
+        return r.category == category && r.variant == variant && in_views(r, partial) &&
                r.perturbation == kind && r.level_index == level_index;
       },
       [](const EvalRow& r) { return r.errors.eq5_per_diagonal2; });
@@ -310,13 +322,13 @@ double swept_clean_eq5_per_diagonal2(const std::vector<EvalRow>& rows, const std
                                      const std::string& variant, bool partial) {
   std::set<std::pair<std::string, int>> swept;  // (instance, view) pairs that were perturbed
   for (const EvalRow& r : rows)
-    if (r.category == category && r.perturbation != Perturbation::none && is_partial(r) == partial)
+    if (r.category == category && r.perturbation != Perturbation::none && in_views(r, partial))
       swept.emplace(r.instance, r.view);
   return mean_of(
       rows,
       [&](const EvalRow& r) {
         return r.category == category && r.variant == variant && r.perturbation == Perturbation::none &&
-               swept.count({r.instance, r.view}) > 0;
+               !r.scene && swept.count({r.instance, r.view}) > 0;
       },
       [](const EvalRow& r) { return r.errors.eq5_per_diagonal2; });
 }
@@ -438,7 +450,7 @@ void clean_figure_tables(std::ostringstream& out, const std::vector<EvalRow>& ro
       for (const std::string& variant : variants) {
         std::vector<const EvalRow*> kept;
         for (const EvalRow& r : rows)
-          if (r.category == category && r.variant == variant && is_partial(r) == partial && has(r) &&
+          if (r.category == category && r.variant == variant && in_views(r, partial) && has(r) &&
               r.perturbation == Perturbation::none)
             kept.push_back(&r);
         out << ' ' << cell_of(kept) << " |";
@@ -490,7 +502,7 @@ void sweep_tables(std::ostringstream& out, const std::vector<EvalRow>& rows) {
   for (const std::string& category : categories_of(rows))
     for (bool partial : {false, true}) {
       if (std::none_of(rows.begin(), rows.end(), [&](const EvalRow& r) {
-            return r.category == category && is_partial(r) == partial && r.perturbation != Perturbation::none;
+            return r.category == category && in_views(r, partial) && r.perturbation != Perturbation::none;
           }))
         continue;
       out << "\nSweeps, " << category << ", " << (partial ? "partial views" : "full views")
@@ -578,6 +590,66 @@ void baseline_tables(std::ostringstream& out, const std::vector<EvalRow>& rows) 
   }
 }
 
+// The depth scenes' figures of one category and variant: scene cuts paired with the hand cut of the same
+// scene.
+struct SceneFigures {
+  int scenes = 0, right = 0;  // scene cuts, and of those the ones that chose the right object
+  double overlap_sum = 0.0;   // the scene cuts' overlaps (intersection over union)
+  double scene_sum = 0.0, hand_sum = 0.0;
+  int registered = 0;  // scenes where both cuts registered (a finite error each)
+};
+
+SceneFigures scene_figures(const std::vector<EvalRow>& rows, const std::string& category,
+                           const std::string& variant) {
+  using Key = std::tuple<std::string, int, int>;                   // instance, fold, scene
+  std::map<Key, std::pair<const EvalRow*, const EvalRow*>> pairs;  // scene cut, hand cut
+  for (const EvalRow& r : rows)
+    if (r.scene && r.category == category && r.variant == variant) {
+      auto& pair = pairs[Key{r.instance, r.fold, r.view}];
+      (r.scene->cut == CutKind::scene ? pair.first : pair.second) = &r;
+    }
+  SceneFigures figures;
+  for (const auto& [key, pair] : pairs) {
+    if (!pair.first) continue;
+    ++figures.scenes;
+    figures.right += pair.first->scene->precision >= kRightObjectPrecision;
+    figures.overlap_sum += pair.first->scene->overlap;
+    if (!pair.second) continue;
+    const double scene = pair.first->errors.symmetric_rms_per_diagonal;
+    const double hand = pair.second->errors.symmetric_rms_per_diagonal;
+    if (!std::isfinite(scene) || !std::isfinite(hand)) continue;
+    figures.scene_sum += scene, figures.hand_sum += hand, ++figures.registered;
+  }
+  return figures;
+}
+
+// The depth scenes: the scene cut against the same depth image cut by hand, per category and variant.
+void scene_tables(std::ostringstream& out, const std::vector<EvalRow>& rows) {
+  if (std::none_of(rows.begin(), rows.end(), [](const EvalRow& r) { return r.scene.has_value(); })) return;
+  out << "\nDepth scenes (eval --scenes): each held-out instance on a table between training instances, "
+         "seen by a depth camera; the scene cut (support plane removed, clusters, the one nearest the image "
+         "centre) against the same image cut by hand (the object's true mask), each registered about the "
+         "table's normal. Right object: at least "
+      << kRightObjectPrecision
+      << " of the cut's pixels are the object's; overlap: the mean intersection over union of the scene "
+         "cut's pixels with the object's measured pixels (below 1: pieces of the object lost, or neighbours "
+         "taken). Mean symmetric RMS, % of the diagonal, over the scenes where both cuts registered; scene / "
+         "hand is the ratio of the two means.\n\n";
+  header_row(out, "category",
+             {"variant", "scenes", "right object", "overlap", "scene cut", "hand cut", "scene / hand"});
+  for (const std::string& category : categories_of(rows))
+    for (const std::string& variant : variants_of(rows)) {
+      const SceneFigures f = scene_figures(rows, category, variant);
+      if (f.scenes == 0) continue;
+      const double scene = f.registered ? f.scene_sum / f.registered : std::nan("");
+      const double hand = f.registered ? f.hand_sum / f.registered : std::nan("");
+      out << "| " << category << " | " << variant << " | " << f.scenes << " | " << f.right << " ("
+          << cell(double(f.right) / f.scenes, 100, 0) << "%) | " << cell(f.overlap_sum / f.scenes, 1, 2)
+          << " | " << cell(scene, 100) << " | " << cell(hand, 100) << " | " << cell(scene / hand, 1, 2)
+          << " |\n";
+    }
+}
+
 void timing_table(std::ostringstream& out, const std::vector<EvalRow>& rows) {
   std::vector<std::string> methods = variants_of(rows), baselines = baselines_of(rows);
   methods.insert(methods.end(), baselines.begin(), baselines.end());
@@ -634,6 +706,7 @@ std::string markdown_report(const std::vector<EvalRow>& rows) {
   stretch_tables(out, rows);
   detail::grasp_tables(out, rows);
   verdict_tables(out, rows);
+  scene_tables(out, rows);
   sweep_tables(out, rows);
   timing_table(out, rows);
   return out.str();

@@ -32,6 +32,8 @@ std::map<std::string, VerdictTally> tally_verdicts(const std::vector<EvalRow>& r
     if (row.variant == oracle) oracle_rms[key_of(row)] = row.errors.symmetric_rms_per_diagonal;
   std::map<std::string, VerdictTally> tallies;
   for (const EvalRow& row : rows) {
+    // Depth-scene rows have no oracle (no baselines run on them), and their view numbers scenes, not views.
+    if (row.scene) continue;
     const auto found = oracle_rms.find(key_of(row));
     if (!row.verdict || found == oracle_rms.end()) continue;
     const bool bad = row.errors.symmetric_rms_per_diagonal > kBadRatio * found->second;

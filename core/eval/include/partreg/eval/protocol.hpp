@@ -8,6 +8,7 @@
 
 #include <functional>
 #include <map>
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
@@ -19,6 +20,23 @@
 #include "partreg/core/truth_errors.hpp"
 #include "partreg/eval/perturbation.hpp"
 #include "partreg/eval/views.hpp"
+
+namespace partreg::eval {
+
+/// How the object of a depth-scene row was cut out of its depth image (scene_eval/depth_scenes.hpp).
+enum class CutKind {
+  scene,  ///< as `register --depth` cuts it: plane removed, clusters, the one nearest the image centre
+  hand    ///< by hand: the held-out object's own measured pixels (its true mask)
+};
+
+}  // namespace partreg::eval
+
+template <>
+struct partreg::core::EnumNames<partreg::eval::CutKind> {
+  using C = partreg::eval::CutKind;
+  static constexpr const char* what = "cut";
+  static constexpr std::array<std::pair<C, const char*>, 2> table{{{C::scene, "scene"}, {C::hand, "hand"}}};
+};
 
 namespace partreg::eval {
 
@@ -62,8 +80,13 @@ struct GraspEvaluation {
   int count = 30;  ///< grasps sampled per fold when none are given
 };
 
+class ExtraObservations;
+
 struct EvalSettings {
   Protocol protocol;
+  /// Observations made by a library above eval (the depth scenes of scene_eval/depth_scenes.hpp), run after
+  /// each tested instance's own; none by default.
+  std::shared_ptr<const ExtraObservations> extra;
   std::optional<GraspEvaluation> grasps;  ///< none: no grasp figures
   std::vector<core::Variant> variants = {core::Variant::holistic, core::Variant::partwise,
                                          core::Variant::hol_part};
@@ -96,12 +119,29 @@ struct GraspScore {
   std::optional<double> frame_error_median_degrees, frame_error_p90_degrees;
 };
 
+/// A depth-scene row's cut (scene_eval/depth_scenes.hpp): which cut it registered and how well the cut
+/// matched the held-out object's measured pixels (its true mask).
+struct SceneCutScore {
+  CutKind cut = CutKind::scene;
+  /// Intersection over union of the cut's pixels with the object's: 1 for the hand cut, near 1 for a scene
+  /// cut of the whole object, lower for a piece of it (or the object merged with a neighbour), 0 for another
+  /// object or none.
+  double overlap = 0.0;
+  /// The share of the cut's pixels that are the object's: near 1 for the whole object or a piece of it, 0
+  /// for another object or none.
+  double precision = 0.0;
+};
+
+/// A scene cut chose the right object when at least this share of its pixels are the object's (precision):
+/// a neighbour, or the object merged with a larger neighbour, falls below it.
+inline constexpr double kRightObjectPrecision = 0.5;
+
 /// One registration of the protocol, or one baseline on the same observation.
 struct EvalRow {
   std::string category, instance, canonical;
   std::string variant;  ///< a core::Variant's name, or a Baseline's (baselines.hpp)
   int fold = 0;
-  int view = -1;  ///< -1: the full view; else the index of the partial view's direction
+  int view = -1;  ///< -1: the full view; else the partial view's direction index (or the depth scene's)
   Eigen::Vector3d direction = Eigen::Vector3d::Zero();  ///< unit direction to the camera (zero for full)
   Perturbation perturbation = Perturbation::none;
   int level_index = -1;      ///< which of the paper's levels (0-4), -1 without perturbation
@@ -124,7 +164,46 @@ struct EvalRow {
   /// empty for the baselines. The report sets them against the truth (verdict_report.hpp).
   std::optional<core::TrustFigures> figures;
   std::optional<core::Verdict> verdict;
+  /// Depth-scene rows only: the cut. Such rows have `view` the scene's index and `direction` the camera's
+  /// direction from the object in its own frame; the tables of full and partial views leave them out.
+  std::optional<SceneCutScore> scene;
 };
+
+/// Whether a row belongs to the point-sampled views' tables: full views (`partial` false) or partial views.
+/// Depth-scene rows belong to neither.
+inline bool in_views(const EvalRow& row, bool partial) { return !row.scene && (row.view >= 0) == partial; }
+
+/// One tested instance as ExtraObservations sees it (its own frame and units).
+struct TestedInstance {
+  std::size_t index = 0;  ///< into EvalInput::instances
+  int fold = 0;
+  const core::Points* truth = nullptr;          ///< what its registrations are scored against
+  const Eigen::VectorXi* truth_part = nullptr;  ///< the truth's own part per point; null or empty: none
+  double diagonal = 0.0;                        ///< D of the truth (truth_errors.hpp)
+  std::vector<std::size_t> training;            ///< the fold's training instances (into EvalInput::instances)
+  const core::Points* correspondents = nullptr;  ///< where each canonical point truly lies; null: unknown
+};
+
+/// Observations of a tested instance that a library above eval makes: eval links the core only, and the
+/// depth scenes need partreg_scene (PCL, the io layer), so they plug in here rather than eval linking them.
+/// run_evaluation trains each fold once and hands its model to both.
+class ExtraObservations {
+ public:
+  virtual ~ExtraObservations() = default;
+  /// How many jobs `tested` gets (0: none, e.g. an instance without a mesh).
+  virtual int jobs(const EvalInput& input, const TestedInstance& tested) const = 0;
+  /// Rows each job fills, for this many variants.
+  virtual std::size_t rows_per_job(std::size_t variants) const = 0;
+  /// Runs job `job` of `tested` on the fold's `model`, filling rows_per_job(variants.size()) rows. Called
+  /// from several threads at once.
+  virtual void run(const EvalInput& input, const EvalSettings& settings, const core::CategoryModel& model,
+                   const TestedInstance& tested, int job, const std::vector<core::Variant>& variants,
+                   EvalRow* rows) const = 0;
+};
+
+/// A seed that depends only on `seed` and `value` (a splitmix64 step): what the protocol derives every job's
+/// seed with, so that rows do not depend on threads or shards.
+std::uint64_t mix_seed(std::uint64_t seed, std::uint64_t value);
 
 /// Progress (core/progress.hpp): rows done, rows planned, and a line worth logging (empty when there is
 /// none). The report after a fold's training has `aside` set: time-left estimates leave training out.

@@ -14,7 +14,7 @@ namespace partreg::eval {
 
 /// The layout of results.csv (its columns and their meaning), recorded in run.json beside it: raised when a
 /// column changes meaning. The CSV itself is plain: a header line, then the rows.
-inline constexpr int kRowsFormat = 8;
+inline constexpr int kRowsFormat = 9;
 
 /// Writes rows as CSV: one header line naming the columns, then one line per row (pandas.read_csv reads it
 /// without options). Throws InputError when the file cannot be written.

@@ -23,7 +23,7 @@ struct SegmentationSettings {
   double min_plane_share = 0.1;   ///< a plane needs at least this share of the measured points
   int outlier_neighbours = 20;    ///< statistical outlier removal: neighbours whose mean distance is judged
   double outlier_deviations = 2.0;  ///< ... and removed beyond this many standard deviations of that mean
-  double cluster_tolerance = 0.02;  ///< Euclidean clustering: points closer than this join (m)
+  double cluster_tolerance = 0.04;  ///< Euclidean clustering: points closer than this join (m)
   int min_cluster_points = 50;      ///< smaller clusters (voxelised points) are noise
 };
 
