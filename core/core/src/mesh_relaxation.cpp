@@ -46,20 +46,21 @@ Neighbours neighbours(const Faces& faces, const Points& reference, const std::ve
   return adjacent;
 }
 
-// Solves the region's displacement: each region vertex the weighted mean of its neighbours',
-// vertices outside the region fixed. A tiny pull to its own displacement keeps a region with no fixed
-// neighbour (a whole loose part) solvable: it then keeps its mean displacement.
-void harmonic_fill(const Neighbours& adjacent, const std::vector<int>& region,
-                   Eigen::MatrixXd& displacement) {
-  constexpr double kOwnPull = 1e-6;
+// The region's displacement smoothed: each region vertex pulled to the weighted mean of its neighbours' and,
+// by `screen`, to its own (0: the harmonic fill; 1: about as firmly as to its neighbours), vertices outside the
+// region fixed. A tiny least pull keeps a region with no fixed neighbour (a loose part) solvable.
+Eigen::MatrixXd smoothed(const Neighbours& adjacent, const std::vector<int>& region,
+                         const Eigen::MatrixXd& displacement, double screen) {
+  const double own_pull = std::max(screen, 1e-6);
+  Eigen::MatrixXd out = displacement;
   std::map<int, int> unknown;
   for (int v : region) unknown.emplace(v, static_cast<int>(unknown.size()));
   const auto n = static_cast<Eigen::Index>(unknown.size());
   std::vector<Eigen::Triplet<double>> entries;
   Eigen::MatrixXd rhs = Eigen::MatrixXd::Zero(n, 3);
   for (const auto& [v, row] : unknown) {
-    double total = kOwnPull;
-    rhs.row(row) = kOwnPull * displacement.row(v);
+    double total = own_pull;
+    rhs.row(row) = own_pull * displacement.row(v);
     for (const auto& [w, weight] : adjacent[static_cast<std::size_t>(v)]) {
       total += weight;
       const auto inside = unknown.find(w);
@@ -73,9 +74,10 @@ void harmonic_fill(const Neighbours& adjacent, const std::vector<int>& region,
   Eigen::SparseMatrix<double> system(n, n);
   system.setFromTriplets(entries.begin(), entries.end());
   const Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> solver(system);
-  if (solver.info() != Eigen::Success) return;  // symmetric and diagonally dominant: not expected
+  if (solver.info() != Eigen::Success) return out;  // symmetric and diagonally dominant: not expected
   const Eigen::MatrixXd solved = solver.solve(rhs);
-  for (const auto& [v, row] : unknown) displacement.row(v) = solved.row(row);
+  for (const auto& [v, row] : unknown) out.row(v) = solved.row(row);
+  return out;
 }
 
 // The fault faces' vertices (representatives) and `rings` rings of neighbours around them.
@@ -115,22 +117,26 @@ Points relax_faults(const Faces& faces, const Points& reference, const Points& d
   if (faulty.empty()) return deformed;
   const std::vector<int> representative = welded(reference);
   const Neighbours adjacent = neighbours(faces, reference, representative);
-  // Displacements of the representatives; every vertex follows its representative at the end.
-  Eigen::MatrixXd displacement = deformed - reference;
+  const Eigen::MatrixXd displacement = deformed - reference;  // rows of representatives are read
+  const double largest_shift =
+      faults.largest_shift * (reference.colwise().maxCoeff() - reference.colwise().minCoeff()).norm();
   std::set<int> region;
-  Points relaxed = deformed, best = deformed;
+  Points best = deformed;
   std::size_t fewest = faulty.size();
-  for (int round = 0; round < faults.rounds && !faulty.empty(); ++round) {
+  double screen = faults.first_screen;
+  for (int round = 0; round < faults.rounds && !faulty.empty(); ++round, screen *= faults.screen_step) {
     for (int f : faulty)
       for (int e = 0; e < 3; ++e) region.insert(representative[static_cast<std::size_t>(faces(f, e))]);
-    // Each round that leaves faults repairs their rings too, with what was repaired before.
+    // Each round repairs the faults left and their rings with what it repaired before, smoothing more.
     const std::vector<int> repaired = grow(adjacent, region, faults.rings);
-    harmonic_fill(adjacent, repaired, displacement);
     region.insert(repaired.begin(), repaired.end());
+    const Eigen::MatrixXd smooth = smoothed(adjacent, repaired, displacement, screen);
+    Points relaxed(deformed.rows(), 3);
     for (Eigen::Index v = 0; v < relaxed.rows(); ++v)
-      relaxed.row(v) = reference.row(v) + displacement.row(representative[static_cast<std::size_t>(v)]);
+      relaxed.row(v) = reference.row(v) + smooth.row(representative[static_cast<std::size_t>(v)]);
+    // A repair that would move the surface away from what the fit found is not kept: the fold is real.
+    if ((relaxed - deformed).rowwise().norm().maxCoeff() > largest_shift) break;
     faulty = faulty_faces(faces, reference, relaxed, faults);
-    // A wide region's fill can turn a few faces of its own: the round with the fewest faults is kept.
     if (faulty.size() < fewest) fewest = faulty.size(), best = relaxed;
   }
   return best;

@@ -52,9 +52,10 @@ Points deform_points(const CategoryModel& model, const RegistrationResult& resul
 
 /// The canonical mesh deformed into the observed frame (same faces): deform_points of its vertices, except
 /// where that turns a face over against the posed canonical or stretches an edge beyond 3x: there, and two
-/// rings of vertices around, the displacement is the smoothest one (harmonic) agreeing with the mesh around it
-/// (more rings while faults remain). A ShapeNet mug model's mean shape turned 718 of 22140 faces over at its
-/// handle, and its refined partial views stretched edges up to 4.6x.
+/// rings of vertices around, the displacement is smoothed (screened, then harmonic, in rounds over a growing
+/// region) as far as removes the faults without moving any vertex more than 5% of the diagonal; a fold that
+/// needs more is left as the field made it. Held-out ShapeNet mugs, 24 default registrations: 3394 faces
+/// turned over after the repair against 8924 before (18 registrations with any against 22).
 Mesh deform_mesh(const CategoryModel& model, const RegistrationResult& result, const SeamBlend& blend = {});
 
 /// How far the registration stretched the canonical mesh: the largest ratio of an edge's length in
