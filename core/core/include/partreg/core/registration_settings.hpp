@@ -7,9 +7,11 @@
 /// is 1. Choices and the measurements behind the defaults: docs/registration.md.
 
 #include <Eigen/Core>
+#include <memory>
 #include <optional>
 
 #include "partreg/core/enum_names.hpp"
+#include "partreg/core/free_space.hpp"
 #include "partreg/core/verdict.hpp"
 
 namespace partreg::core {
@@ -116,6 +118,12 @@ struct InitialisationSettings {
   /// else the object moved beyond what the local fit recovers and the search runs. A held-out mug's partial
   /// view read 0.023 at the right pose, 0.029 half a turn off (docs/speed.md).
   double warm_limit = 0.02;
+  /// With free space (RegistrationSettings::free_space) a hypothesis's score is multiplied by 1 + this times
+  /// the share of its posed model points the camera would have seen in front of the measured depth
+  /// (FreeSpace::violation_share; 0 = free space does not score). A multiple rather than a sum: the score is
+  /// a length or a cost by `score`, the share a number in [0, 1]. 2 lets a pose with a quarter of its points
+  /// in free space lose to one with none that fits up to 1.5 times worse (docs/camera.md, "Free space").
+  double free_space_weight = 2.0;
 };
 
 /// When a space's fit stops.
@@ -181,6 +189,11 @@ struct RegistrationSettings {
   /// Camera position (observed frame, data units): only canonical points facing it are matched. Unknown when
   /// empty.
   std::optional<Eigen::Vector3d> viewpoint;
+  /// The depth image the observation came from, where it came from one: the space the camera saw empty,
+  /// scoring the pose search (InitialisationSettings::free_space_weight) and the verdict
+  /// (TrustFigures::free_space_violation). Its T_camera_observed maps the observation's frame into the
+  /// camera's. Shared, not copied: settings are copied per hypothesis.
+  std::shared_ptr<const FreeSpace> free_space;
 };
 
 template <>
