@@ -58,12 +58,42 @@ TEST(FreeSpace, ALostPixelOnASurfaceStandsForItsNeighboursAndOpenSkyIsFreeAllAlo
   EXPECT_EQ(free.depth_at(10, 20), static_cast<float>(kPlaneDepth));
   EXPECT_EQ(free.violation(at_pixel(free, 10, 20, kPlaneDepth)), 0.0);
   EXPECT_NEAR(free.violation(at_pixel(free, 10, 21, 0.9)), 0.1 - 0.0125, 1e-6);
-  // A block of sky wider than the window: its centre's ray met nothing, so any point there violates.
-  free.depth.block(30, 40, 12, 12).setZero();
-  EXPECT_EQ(free.depth_at(46, 36), 0.0);
-  EXPECT_TRUE(std::isinf(free.violation(at_pixel(free, 46, 36, 3.0))));
-  // Its rim stands for the nearest measured depth within the window.
-  EXPECT_EQ(free.violation(at_pixel(free, 41, 31, kPlaneDepth)), 0.0);
+  // A block of sky wider than the missing window: its centre's ray met nothing, so any point there violates.
+  free.depth.block(4, 4, 40, 40).setZero();
+  EXPECT_EQ(free.depth_at(24, 24), 0.0);
+  EXPECT_TRUE(std::isinf(free.violation(at_pixel(free, 24, 24, 3.0))));
+  // Within the missing window of its rim the hole stands for the plane.
+  EXPECT_EQ(free.depth_at(10, 10), static_cast<float>(kPlaneDepth));
+  EXPECT_EQ(free.violation(at_pixel(free, 10, 10, kPlaneDepth)), 0.0);
+}
+
+TEST(FreeSpace, APointAPixelOrTwoAcrossASilhouetteMeetsTheObjectsDepth) {
+  FreeSpace free = plane();
+  free.depth.leftCols(32).setConstant(0.5f);  // an object in front of the plane on the left half
+  // On the plane's side, one and two pixels from the object: judged against the object's 0.5 m.
+  EXPECT_EQ(free.violation(at_pixel(free, 32, 20, 0.5)), 0.0);
+  EXPECT_EQ(free.violation(at_pixel(free, 33, 20, 0.5)), 0.0);
+  // Three pixels and more across: the plane behind, 0.5 m farther, so the point floats in free space.
+  EXPECT_GT(free.violation(at_pixel(free, 34, 20, 0.5)), 0.4);
+  EXPECT_GT(free.violation(at_pixel(free, 50, 20, 0.5)), 0.4);
+}
+
+TEST(FreeSpace, PreparedReadsTheSameAsTheWindowsItBakesIn) {
+  FreeSpace free = plane();
+  free.depth.leftCols(20).setConstant(0.6f);
+  free.depth.block(10, 30, 6, 6).setZero();  // a hole in the plane
+  free.depth.block(0, 44, 48, 20).setZero();  // sky on the right
+  const FreeSpace prepared = free.prepared();
+  EXPECT_EQ(prepared.lateral_window, 0);
+  EXPECT_EQ(prepared.missing_window, 0);
+  for (int v = 0; v < free.height(); ++v)
+    for (int u = 0; u < free.width(); ++u) {
+      ASSERT_EQ(prepared.depth_at(u, v), free.depth_at(u, v)) << u << ", " << v;
+      for (double z : {0.3, 0.59, 0.9, 1.2}) {
+        const Eigen::Vector3d p = at_pixel(free, u, v, z);
+        ASSERT_EQ(prepared.violation(p), free.violation(p)) << u << ", " << v << ", " << z;
+      }
+    }
 }
 
 TEST(FreeSpace, TheShareReadsPointsThroughTheMapIntoTheCameraFrame) {

@@ -11,19 +11,45 @@ namespace {
 
 bool measured(float z) { return std::isfinite(z) && z > 0.0f; }
 
+constexpr float kNone = std::numeric_limits<float>::infinity();
+
+// The smallest of `image` (kNone where nothing was measured) within `radius` pixels, as a square window: a
+// minimum over rows, then over columns.
+Eigen::MatrixXf smallest_within(const Eigen::MatrixXf& image, int radius) {
+  const auto pass = [radius](const Eigen::MatrixXf& in) {
+    Eigen::MatrixXf out(in.rows(), in.cols());
+    for (Eigen::Index c = 0; c < in.cols(); ++c)
+      for (Eigen::Index r = 0; r < in.rows(); ++r) {
+        const Eigen::Index first = std::max<Eigen::Index>(0, r - radius);
+        const Eigen::Index last = std::min<Eigen::Index>(in.rows() - 1, r + radius);
+        out(r, c) = in.col(c).segment(first, last - first + 1).minCoeff();
+      }
+    return out;
+  };
+  return pass(pass(image).transpose()).transpose();
+}
+
 }  // namespace
 
 double FreeSpace::depth_at(int u, int v) const {
-  const float own = depth(v, u);
-  if (measured(own)) return own;
-  // The smallest depth nearby: a lost pixel on the object's rim stands for the object, not the table behind.
-  double nearest = 0.0;
-  for (int y = std::max(0, v - missing_window); y <= std::min(height() - 1, v + missing_window); ++y)
-    for (int x = std::max(0, u - missing_window); x <= std::min(width() - 1, u + missing_window); ++x) {
-      const float z = depth(y, x);
-      if (measured(z) && (nearest == 0.0 || z < nearest)) nearest = z;
-    }
-  return nearest;
+  // A lost pixel looks farther: a band of a silhouette lost at grazing angles is wider than the lateral window,
+  // and the table just beyond it is not what the pixel's ray would have met.
+  const int radius = measured(depth(v, u)) ? lateral_window : missing_window;
+  float nearest = kNone;
+  for (int y = std::max(0, v - radius); y <= std::min(height() - 1, v + radius); ++y)
+    for (int x = std::max(0, u - radius); x <= std::min(width() - 1, u + radius); ++x)
+      if (measured(depth(y, x))) nearest = std::min(nearest, depth(y, x));
+  return nearest < kNone ? nearest : 0.0;
+}
+
+FreeSpace FreeSpace::prepared() const {
+  FreeSpace out = *this;
+  const Eigen::MatrixXf known = depth.unaryExpr([](float z) { return measured(z) ? z : kNone; });
+  const Eigen::MatrixXf near = smallest_within(known, lateral_window), far = smallest_within(known, missing_window);
+  out.depth = known.binaryExpr(near, [](float own, float a) { return own < kNone ? a : kNone; })
+                  .binaryExpr(far, [](float a, float b) { return a < kNone ? a : b < kNone ? b : 0.0f; });
+  out.lateral_window = out.missing_window = 0;
+  return out;
 }
 
 double FreeSpace::violation(const Eigen::Vector3d& p) const {
@@ -50,7 +76,7 @@ void FreeSpace::validate() const {
   if (depth.size() == 0) throw InputError("free space: the depth image is empty");
   if ((depth.array() < 0.0f).any()) throw InputError("free space: the depth image holds negative depth");
   if (!(noise_offset >= 0.0) || !(noise_quadratic >= 0.0) || !(noise_multiple >= 0.0) || !(margin >= 0.0) ||
-      missing_window < 0)
+      lateral_window < 0 || missing_window < 0)
     throw InputError("free space: the noise, its multiple, the margin and the window must not be negative");
 }
 

@@ -120,7 +120,7 @@ detail::Observation prepare_observation(const CategoryModel& model, const Points
     observation.viewpoint = (*settings.viewpoint - centroid) / S;
   if (settings.free_space) {
     // The fits' normalised points: scaled back and moved onto the centroid before the camera's own map.
-    auto normalised = std::make_shared<FreeSpace>(*settings.free_space);
+    auto normalised = std::make_shared<FreeSpace>(settings.free_space->prepared());
     normalised->T_camera_observed = settings.free_space->T_camera_observed * Eigen::Translation3d(centroid) *
                                     Eigen::Scaling(S);
     observation.free_space = std::move(normalised);

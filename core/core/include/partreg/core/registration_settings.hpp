@@ -121,9 +121,11 @@ struct InitialisationSettings {
   /// With free space (RegistrationSettings::free_space) a hypothesis's score is multiplied by 1 + this times
   /// the share of its posed model points the camera would have seen in front of the measured depth
   /// (FreeSpace::violation_share; 0 = free space does not score). A multiple rather than a sum: the score is
-  /// a length or a cost by `score`, the share a number in [0, 1]. 2 lets a pose with a quarter of its points
-  /// in free space lose to one with none that fits up to 1.5 times worse (docs/camera.md, "Free space").
-  double free_space_weight = 2.0;
+  /// a length or a cost by `score`, the share a number in [0, 1]. On a rendered synthetic mug whose handle
+  /// the camera could not see, 2 still kept a pose with 4% of its points in free space and the handle 0.11 m
+  /// off; 10 hid it (0.5%); on twelve views of a held-out ShapeNet mug 10 changed no error by more than 0.0004
+  /// of the diagonal (docs/camera.md, "Free space").
+  double free_space_weight = 10.0;
 };
 
 /// When a space's fit stops.
