@@ -54,8 +54,10 @@ FreeSpace FreeSpace::prepared() const {
 
 double FreeSpace::violation(const Eigen::Vector3d& p) const {
   if (!(p.z() > 0.0)) return 0.0;  // behind the camera: never seen
-  const long u = std::lround(fx * p.x() / p.z() + cx), v = std::lround(fy * p.y() / p.z() + cy);
-  if (u < 0 || v < 0 || u >= width() || v >= height()) return 0.0;
+  // Rounded to the nearest pixel centre; compared as reals first, so a point near the camera's plane cannot
+  // overflow the rounding.
+  const double u = std::round(fx * p.x() / p.z() + cx), v = std::round(fy * p.y() / p.z() + cy);
+  if (!(u >= 0.0 && v >= 0.0 && u < width() && v < height())) return 0.0;
   const double z = depth_at(static_cast<int>(u), static_cast<int>(v));
   if (z == 0.0) return std::numeric_limits<double>::infinity();
   return std::max(0.0, z - noise_multiple * sigma(z) - margin - p.z());
