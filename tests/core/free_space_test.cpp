@@ -1,12 +1,13 @@
 // Free space (core/free_space.hpp) on a synthetic depth image of a plane facing the camera: which points
 // violate and by how much, lost pixels on a surface and open sky, the frame map, and the verdict's reading.
+#include "partreg/core/free_space.hpp"
+
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <limits>
 
 #include "partreg/core/errors.hpp"
-#include "partreg/core/free_space.hpp"
 #include "partreg/core/verdict.hpp"
 #include "support/test_shapes.hpp"
 
@@ -30,7 +31,9 @@ Eigen::Vector3d at_pixel(const FreeSpace& free, double u, double v, double z) {
 }
 
 // The allowance in front of the plane: 3 sigma(1 m) + the margin = 3 x 2.5 mm + 5 mm.
-double allowance(const FreeSpace& free) { return free.noise_multiple * free.sigma(kPlaneDepth) + free.margin; }
+double allowance(const FreeSpace& free) {
+  return free.noise_multiple * free.sigma(kPlaneDepth) + free.margin;
+}
 
 TEST(FreeSpace, APointInFrontOfThePlaneViolatesByItsDistanceBeyondTheAllowance) {
   const FreeSpace free = plane();
@@ -45,8 +48,8 @@ TEST(FreeSpace, APointInFrontOfThePlaneViolatesByItsDistanceBeyondTheAllowance) 
 
 TEST(FreeSpace, PointsTheCameraCannotSeeNeverViolate) {
   const FreeSpace free = plane();
-  EXPECT_EQ(free.violation(at_pixel(free, -3, 20, 0.5)), 0.0);   // left of the image
-  EXPECT_EQ(free.violation(at_pixel(free, 10, 48.6, 0.5)), 0.0);  // below it
+  EXPECT_EQ(free.violation(at_pixel(free, -3, 20, 0.5)), 0.0);      // left of the image
+  EXPECT_EQ(free.violation(at_pixel(free, 10, 48.6, 0.5)), 0.0);    // below it
   EXPECT_EQ(free.violation(Eigen::Vector3d(0.0, 0.0, -0.5)), 0.0);  // behind the camera
   EXPECT_EQ(free.violation(Eigen::Vector3d(0.0, 0.0, 0.0)), 0.0);
 }
@@ -81,7 +84,7 @@ TEST(FreeSpace, APointAPixelOrTwoAcrossASilhouetteMeetsTheObjectsDepth) {
 TEST(FreeSpace, PreparedReadsTheSameAsTheWindowsItBakesIn) {
   FreeSpace free = plane();
   free.depth.leftCols(20).setConstant(0.6f);
-  free.depth.block(10, 30, 6, 6).setZero();  // a hole in the plane
+  free.depth.block(10, 30, 6, 6).setZero();   // a hole in the plane
   free.depth.block(0, 44, 48, 20).setZero();  // sky on the right
   const FreeSpace prepared = free.prepared();
   EXPECT_EQ(prepared.lateral_window, 0);
@@ -140,7 +143,8 @@ TEST(FreeSpace, TheVerdictFlagsAShareBeyondItsThresholds) {
   EXPECT_EQ(judge(figures, settings).verdict, Verdict::good);  // unset: no depth image
   figures.free_space_violation = 0.5 * settings.doubtful_free_space_violation;
   EXPECT_EQ(judge(figures, settings).verdict, Verdict::good);
-  figures.free_space_violation = 0.5 * (settings.doubtful_free_space_violation + settings.failed_free_space_violation);
+  figures.free_space_violation =
+      0.5 * (settings.doubtful_free_space_violation + settings.failed_free_space_violation);
   const Assessment doubtful = judge(figures, settings);
   EXPECT_EQ(doubtful.verdict, Verdict::doubtful);
   ASSERT_EQ(doubtful.reasons.size(), 1u);

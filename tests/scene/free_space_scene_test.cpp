@@ -42,9 +42,9 @@ core::Points transformed(const core::Points& points, const Eigen::Matrix4d& T) {
 
 struct MugScene {
   core::CategoryModel model;
-  core::Points truth;         ///< the held-out mug's surface samples in the camera frame (m)
-  core::Points handle_truth;  ///< its handle's samples
-  Eigen::Vector3d up;         ///< the table's normal (camera frame)
+  core::Points truth;           ///< the held-out mug's surface samples in the camera frame (m)
+  core::Points handle_truth;    ///< its handle's samples
+  Eigen::Vector3d up;           ///< the table's normal (camera frame)
   Eigen::Vector3d body_centre;  ///< the mean of its body's samples (camera frame)
   SceneView view;
 };
@@ -53,7 +53,8 @@ struct MugScene {
 // from the camera.
 MugScene make_scene() {
   MugScene scene;
-  const std::vector<core::SyntheticInstance> mugs = core::make_synthetic_category(core::SyntheticCategory::mug, 8, 21);
+  const std::vector<core::SyntheticInstance> mugs =
+      core::make_synthetic_category(core::SyntheticCategory::mug, 8, 21);
   std::vector<core::TrainingInstance> training;
   for (std::size_t i = 0; i + 1 < mugs.size(); ++i) {
     const core::SurfaceSamples samples =
@@ -68,7 +69,8 @@ MugScene make_scene() {
   const core::SurfaceSamples held =
       core::sample_correspondences(core::SyntheticCategory::mug, mugs.back().shape_parameters, 1500, 5);
   core::Mesh mesh = merged(mugs.back().parts);
-  const double size = core::bounding_box_diagonal(mesh.vertices);  // its own size: the model's units are metres
+  const double size =
+      core::bounding_box_diagonal(mesh.vertices);  // its own size: the model's units are metres
   // Where the layout puts the camera, in the mug's frame; then the mug turned about its up axis (+y) so the
   // handle points away from it.
   const TableScene first = lay_out_table({TableObject{mesh, Eigen::Vector3d::UnitY(), size}});
@@ -156,10 +158,10 @@ TEST(FreeSpaceScene, ThePoseSearchWithFreeSpaceKeepsTheHiddenHandleHidden) {
   EXPECT_GT(blind_error, 0.08);
 }
 
-// A real ShapeNet mug (0.12 m) on the table at six seeded yaws: its true surface, and the same turned about the
-// table's normal through its centre, the wrong answers a pose search weighs. Measured: the truth 0% on every
-// view; a quarter turn 1.0% to 7.8%, half a turn 2.7% to 16.9%, the worse of the two 6.8% to 16.9%. A turn
-// that hides a handle the camera saw is not in free space (the observed points refute it, not the empty
+// A real ShapeNet mug (0.12 m) on the table at six seeded yaws: its true surface, and the same turned about
+// the table's normal through its centre, the wrong answers a pose search weighs. Measured: the truth 0% on
+// every view; a quarter turn 1.0% to 7.8%, half a turn 2.7% to 16.9%, the worse of the two 6.8% to 16.9%. A
+// turn that hides a handle the camera saw is not in free space (the observed points refute it, not the empty
 // space): only the turn that brings it where the camera saw the table or the body is.
 TEST(FreeSpaceScene, ARealMugsTruthKeepsOutOfFreeSpaceAndItsTurnsDoNot) {
   const std::filesystem::path path = testing::shared_data("mugs/5c48d471200d2bf16e8a121e6886e18d.obj");
@@ -170,7 +172,8 @@ TEST(FreeSpaceScene, ARealMugsTruthKeepsOutOfFreeSpaceAndItsTurnsDoNot) {
     TableLayout layout;
     layout.seed = seed;
     const TableScene table = lay_out_table({TableObject{mug, Eigen::Vector3d::UnitY(), 0.12}}, layout);
-    const auto free = free_space_of(depth_view(render_depth({table.objects[0].mesh, table.table}, k).depth, k));
+    const auto free =
+        free_space_of(depth_view(render_depth({table.objects[0].mesh, table.table}, k).depth, k));
     const core::Points truth = core::sample_surface(table.objects[0].mesh, 3000, seed).points;
     const Eigen::RowVector3d centre = table.objects[0].T_camera_object.topRightCorner<3, 1>().transpose();
     const auto turned = [&](double angle) {
@@ -179,8 +182,8 @@ TEST(FreeSpaceScene, ARealMugsTruthKeepsOutOfFreeSpaceAndItsTurnsDoNot) {
     };
     const double right = free->violation_share(truth), quarter = free->violation_share(turned(M_PI / 2)),
                  half = free->violation_share(turned(M_PI));
-    std::cerr << "seed " << seed << ": truth " << right << ", quarter turn " << quarter << ", half turn " << half
-              << "\n";
+    std::cerr << "seed " << seed << ": truth " << right << ", quarter turn " << quarter << ", half turn "
+              << half << "\n";
     EXPECT_LT(right, 0.01);
     EXPECT_GT(std::max(quarter, half), 0.05);
   }

@@ -32,8 +32,8 @@ Eigen::MatrixXf smallest_within(const Eigen::MatrixXf& image, int radius) {
 }  // namespace
 
 double FreeSpace::depth_at(int u, int v) const {
-  // A lost pixel looks farther: a band of a silhouette lost at grazing angles is wider than the lateral window,
-  // and the table just beyond it is not what the pixel's ray would have met.
+  // A lost pixel looks farther: a band of a silhouette lost at grazing angles is wider than the lateral
+  // window, and the table just beyond it is not what the pixel's ray would have met.
   const int radius = measured(depth(v, u)) ? lateral_window : missing_window;
   float nearest = kNone;
   for (int y = std::max(0, v - radius); y <= std::min(height() - 1, v + radius); ++y)
@@ -45,9 +45,12 @@ double FreeSpace::depth_at(int u, int v) const {
 FreeSpace FreeSpace::prepared() const {
   FreeSpace out = *this;
   const Eigen::MatrixXf known = depth.unaryExpr([](float z) { return measured(z) ? z : kNone; });
-  const Eigen::MatrixXf near = smallest_within(known, lateral_window), far = smallest_within(known, missing_window);
+  const Eigen::MatrixXf near = smallest_within(known, lateral_window),
+                        far = smallest_within(known, missing_window);
   out.depth = known.binaryExpr(near, [](float own, float a) { return own < kNone ? a : kNone; })
-                  .binaryExpr(far, [](float a, float b) { return a < kNone ? a : b < kNone ? b : 0.0f; });
+                  .binaryExpr(far, [](float a, float b) { return a < kNone   ? a
+                                                                 : b < kNone ? b
+                                                                             : 0.0f; });
   out.lateral_window = out.missing_window = 0;
   return out;
 }

@@ -24,7 +24,7 @@ struct FreeSpace {
   /// The depth noise's standard deviation is noise_offset + noise_quadratic z^2. The quadratic term is the
   /// structured-light sensor `partreg scene` renders (0.0015 m at 1 m, a Kinect-class camera's); the
   /// offset covers its disparity quantisation (1/8 pixel: 1 mm at 0.6 m).
-  double noise_offset = 0.001;    ///< (observation units)
+  double noise_offset = 0.001;      ///< (observation units)
   double noise_quadratic = 0.0015;  ///< (per observation unit)
   /// A point violates only this many standard deviations in front of the measured depth, or more.
   double noise_multiple = 3.0;
@@ -61,7 +61,8 @@ struct FreeSpace {
   /// The same free space with every pixel's stand-in depth (depth_at) written into `depth` and both windows
   /// 0: one read per point, for the thousands of tests a pose search makes.
   FreeSpace prepared() const;
-  /// InputError for non-finite or non-positive focal lengths, an empty image, negative depth, noise or windows.
+  /// InputError for non-finite or non-positive focal lengths, an empty image, negative depth, noise or
+  /// windows.
   void validate() const;
 };
 
