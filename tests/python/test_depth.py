@@ -68,3 +68,7 @@ def test_register_depth_stands_the_mug_on_the_table(partreg, tmp_path, data_dir,
     # Measured 0.096 (one rendered view, the cut drops the mug's bottom centimetre and its edge pixels); a mug
     # stood upside down or on its side is above 0.2.
     assert errors["symmetric_rms_per_diagonal"] < 0.12
+    # The depth image's free space reaches the verdict; the registered mug keeps out of the space the camera saw
+    # empty (measured 0; the doubtful threshold is 0.08).
+    assert result.figures.free_space_violation is not None
+    assert result.figures.free_space_violation < 0.08, result.figures.free_space_violation

@@ -148,7 +148,9 @@ void report_verdict(const core::RegistrationResult& result, const RegisterOption
             << 100.0 * options.settings.verdict.inlier_distance << "% of the diagonal of the model, RMS "
             << 100.0 * f.observed_rms << "%; latent " << f.latent_distance << " sd; pose ambiguity "
             << f.pose_ambiguity << "; largest seam gap " << 100.0 * f.seam_gap_max << "%; stretch "
-            << f.mesh_stretch << "x; scale " << f.scale << ")\n";
+            << f.mesh_stretch << "x; scale " << f.scale;
+  if (f.free_space_violation) std::cerr << "; in free space " << 100.0 * *f.free_space_violation << "%";
+  std::cerr << ")\n";
   if (!options.fail_on.empty() && result.assessment.verdict >= core::parse_enum<core::Verdict>(options.fail_on))
     throw RejectedResult("the verdict is " + verdict + " (--fail-on " + options.fail_on + ")");
 }

@@ -145,6 +145,7 @@ std::optional<CoarseProblem> coarse_problem(const ShapeSpace& space, const ViewS
   coarse.observation.points = select_rows(observation.points, observed_rows);
   coarse.observation.tree = std::make_unique<KdTree>(coarse.observation.points);
   coarse.observation.viewpoint = observation.viewpoint;
+  coarse.observation.free_space = observation.free_space;
   // The lone points keep their flags: farthest points take them first, so at the paper's 20% outliers about
   // half the subset were outliers, and matched like the rest they decided the ranking of the starts
   // (docs/registration.md, "Strays").
@@ -279,6 +280,17 @@ std::vector<Pose> starting_poses(const Eigen::Vector3d& centre, const Points& ca
 
 double selection_score(const ShapeSpace& space, const ViewSurface& surface, const Observation& observation,
                        const SpaceSolution& solution, const RegistrationSettings& settings) {
+  const double weight = settings.initialisation.free_space_weight;
+  if (!observation.free_space || !(weight > 0.0)) return fit_score(space, surface, observation, solution, settings);
+  // Every posed point counts, facing the camera or not: one in front of the measured depth contradicts the
+  // image wherever it faces.
+  const Points posed = solution.pose.apply(space.deformed(solution.latent));
+  return fit_score(space, surface, observation, solution, settings) *
+         (1.0 + weight * observation.free_space->violation_share(posed));
+}
+
+double fit_score(const ShapeSpace& space, const ViewSurface& surface, const Observation& observation,
+                 const SpaceSolution& solution, const RegistrationSettings& settings) {
   if (settings.initialisation.score == SelectionScore::cost) return solution.cost;
   const Points posed = solution.pose.apply(space.deformed(solution.latent));
   const std::vector<bool> visible = visible_rows(posed, surface, solution.pose, observation.viewpoint);

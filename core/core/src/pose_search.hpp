@@ -44,9 +44,14 @@ SearchOutcome search_poses(const ShapeSpace& space, const ViewSurface& surface,
 double search_prior_weight(const ShapeSpace& space, const Observation& observation, const SpaceSolution& fit,
                            const ObjectiveSettings& objective);
 
-/// The selection score of a fitted pose and latent: the mean of the robust (trimmed at the loss scale x 4)
-/// closest-point distances each way between the posed deformed canonical points the viewpoint sees and
-/// the observation; lower is better (normalised length).
+/// The score of a fitted pose and latent by `InitialisationSettings::score`: the fit's cost, or the mean of
+/// the robust (trimmed at the loss scale x 4) closest-point distances each way between the posed deformed
+/// canonical points the viewpoint sees and the observation (normalised length); lower is better.
+double fit_score(const ShapeSpace& space, const ViewSurface& surface, const Observation& observation,
+                 const SpaceSolution& solution, const RegistrationSettings& settings);
+
+/// The selection score: fit_score, with the observation's free space multiplied by 1 + free_space_weight
+/// times the share of the posed deformed canonical points in front of the measured depth.
 double selection_score(const ShapeSpace& space, const ViewSurface& surface, const Observation& observation,
                        const SpaceSolution& solution, const RegistrationSettings& settings);
 

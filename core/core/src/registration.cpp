@@ -118,6 +118,13 @@ detail::Observation prepare_observation(const CategoryModel& model, const Points
   observation.tree = std::make_unique<KdTree>(observation.points);
   if (settings.viewpoint)
     observation.viewpoint = (*settings.viewpoint - centroid) / S;
+  if (settings.free_space) {
+    // The fits' normalised points: scaled back and moved onto the centroid before the camera's own map.
+    auto normalised = std::make_shared<FreeSpace>(settings.free_space->prepared());
+    normalised->T_camera_observed = settings.free_space->T_camera_observed * Eigen::Translation3d(centroid) *
+                                    Eigen::Scaling(S);
+    observation.free_space = std::move(normalised);
+  }
   return observation;
 }
 
@@ -195,6 +202,7 @@ std::vector<Observation> split_observation(const CategoryModel& model, const Obs
     split[p].points = select_rows(observation.points, rows[p]);
     split[p].tree = std::make_unique<KdTree>(split[p].points);
     split[p].viewpoint = observation.viewpoint;
+    split[p].free_space = observation.free_space;
     if (!observation.alone.empty())
       for (int n : rows[p]) split[p].alone.push_back(observation.alone[static_cast<std::size_t>(n)]);
   }

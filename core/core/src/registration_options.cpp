@@ -140,6 +140,11 @@ std::vector<RegistrationOption> make_options() {
           "a warm start (--init) holds while its fit's symmetric selection score stays below this "
           "(normalised length); above it the pose search runs",
           0.0, 1e6, [](auto& s) -> auto& { return s.initialisation.warm_limit; }),
+      Make::real(
+          "free-space-weight",
+          "with a depth image, a pose hypothesis's score is multiplied by 1 + X times the share of its "
+          "points in front of the measured depth (0: free space does not score)",
+          0.0, 1e6, [](auto& s) -> auto& { return s.initialisation.free_space_weight; }),
       Make::whole(
           "iterations", "correspondence refreshes per space at most", 1, 10000,
           [](auto& s) -> auto& { return s.convergence.outer_iterations; }),
@@ -215,6 +220,7 @@ std::vector<std::pair<std::string, std::string>> registration_option_values(
 void validate(const RegistrationSettings& settings) {
   check_options(registration_options(), settings);
   validate(settings.verdict);
+  if (settings.free_space) settings.free_space->validate();
 }
 
 }  // namespace partreg::core

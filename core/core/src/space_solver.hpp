@@ -26,6 +26,8 @@ struct Observation {
   /// Per point: it stands alone (sampling.hpp's rows_with_neighbours left it out). Such a point is matched only
   /// while the fit passes within kStrayReach of it; empty: none stands alone.
   std::vector<bool> alone;
+  /// The camera's free space with its T_camera_observed reading normalised points (empty: none given).
+  std::shared_ptr<const FreeSpace> free_space;
 };
 
 /// An observed point that stands alone and is farther than this from the fit (normalised length) is a stray:

@@ -7,6 +7,7 @@
 
 #include "partreg/core/deformation.hpp"
 #include "partreg/core/errors.hpp"
+#include "partreg/core/free_space.hpp"
 #include "partreg/core/kdtree.hpp"
 #include "partreg/core/registration.hpp"
 #include "partreg/core/sampling.hpp"
@@ -132,6 +133,9 @@ void validate(const VerdictSettings& s) {
       !length(s.failed_observed_rms) || !length(s.doubtful_seam_gap) || !length(s.failed_seam_gap) ||
       s.failed_observed_rms < s.doubtful_observed_rms || s.failed_seam_gap < s.doubtful_seam_gap)
     throw UsageError("verdict lengths must be finite and not negative, the failed ones above the doubtful ones");
+  if (!share(s.doubtful_free_space_violation) || !share(s.failed_free_space_violation) ||
+      s.failed_free_space_violation < s.doubtful_free_space_violation)
+    throw UsageError("verdict free-space shares must lie in [0, 1], the failed one above the doubtful one");
   if (!length(s.doubtful_refinement_movement))
     throw UsageError("verdict: the refinement movement must be finite and not negative");
   if (!(s.doubtful_latent_distance > 0.0) || !(s.doubtful_pose_ambiguity >= 1.0) ||
@@ -172,6 +176,14 @@ Assessment judge(const TrustFigures& f, const VerdictSettings& s) {
     flag(a, Verdict::doubtful,
          "mesh stretched: an edge " + number(f.mesh_stretch) + "x its canonical length > " +
              number(s.doubtful_mesh_stretch));
+  if (f.free_space_violation) {
+    const std::string seen = "model points where the camera saw free space: " +
+                             percent(*f.free_space_violation) + " > ";
+    if (*f.free_space_violation > s.failed_free_space_violation)
+      flag(a, Verdict::failed, seen + percent(s.failed_free_space_violation));
+    else if (*f.free_space_violation > s.doubtful_free_space_violation)
+      flag(a, Verdict::doubtful, seen + percent(s.doubtful_free_space_violation));
+  }
   if (f.scale_at_bound)
     flag(a, Verdict::doubtful,
          "fitted scale " + number(f.scale) + " at its bound (scale-limit): check the units or the model's size");
@@ -212,6 +224,8 @@ TrustFigures trust_figures(const CategoryModel& model, const Points& observed, c
   const double limit = settings.objective.scale_limit;
   f.scale_at_bound = settings.objective.estimate_scale &&
                      (f.scale <= 1.0 / limit * (1.0 + 1e-3) || f.scale >= limit * (1.0 - 1e-3));
+  // The deformed model's points, as registration scored them: the camera frame is the free space's to map.
+  if (settings.free_space) f.free_space_violation = settings.free_space->violation_share(result.deformed);
   return f;
 }
 

@@ -21,6 +21,7 @@ core::RegistrationResult register_cut(const core::CategoryModel& model, const Sc
                                       core::RegistrationSettings settings, const SceneRegistrationSettings& scene,
                                       const core::ProgressListener& progress) {
   settings.viewpoint = Eigen::Vector3d::Zero();  // the camera, in both frames: the turn keeps the origin
+  if (!settings.free_space) settings.free_space = cut.free_space;
   if (!(cut.up.norm() > 0)) return core::register_observation(model, cut.object.points, settings, progress);
   const Eigen::Vector3d model_up = settings.initialisation.up.value_or(model.up).normalized();
   const Eigen::Matrix3d R_upright_camera =
@@ -29,6 +30,12 @@ core::RegistrationResult register_cut(const core::CategoryModel& model, const Sc
     settings.initialisation.max_tilt = 0.0;
     settings.initialisation.any_rotation = false;
     settings.initialisation.align_principal_axes = false;
+  }
+  if (settings.free_space) {
+    // The free-space test reads camera-frame points: the upright ones are turned back first.
+    auto upright_free = std::make_shared<core::FreeSpace>(*settings.free_space);
+    upright_free->T_camera_observed = settings.free_space->T_camera_observed * R_upright_camera.transpose();
+    settings.free_space = std::move(upright_free);
   }
   const core::Points upright = cut.object.points * R_upright_camera.transpose();
   return rotated(core::register_observation(model, upright, settings, progress), R_upright_camera.transpose());

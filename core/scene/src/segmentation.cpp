@@ -160,6 +160,7 @@ SceneCut cut_scene(const SceneView& view, const Pick& pick, const SegmentationSe
     throw InputError("the scene has " + std::to_string(view.measured.points.rows()) + " measured points");
   const core::Points grid = detail::voxelised(view.measured.points, settings.voxel_size);
   SceneCut cut;
+  cut.free_space = free_space_of(view);
   const std::vector<int> kept = detail::inlier_rows(grid, settings);
   cut.outliers_removed = static_cast<int>(grid.rows()) - static_cast<int>(kept.size());
   const core::Points working = rows_of(grid, kept);

@@ -20,7 +20,8 @@ struct SceneRegistrationSettings {
 };
 
 /// Registers `model` onto `cut.object` (camera frame, data units of the model). `settings.viewpoint` is
-/// replaced by the camera's origin. Throws what register_observation throws.
+/// replaced by the camera's origin; `settings.free_space` (camera frame), when empty, is the cut's. Throws
+/// what register_observation throws.
 core::RegistrationResult register_cut(const core::CategoryModel& model, const SceneCut& cut,
                                       core::RegistrationSettings settings,
                                       const SceneRegistrationSettings& scene = {},

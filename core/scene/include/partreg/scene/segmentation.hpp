@@ -7,10 +7,12 @@
 /// Lengths are in metres (the camera frame's units).
 
 #include <Eigen/Core>
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
 
+#include "partreg/core/free_space.hpp"
 #include "partreg/scene/camera.hpp"
 
 namespace partreg::scene {
@@ -58,7 +60,15 @@ struct SceneCut {
   int chosen = -1;                                ///< index into clusters (-1: the mask chose the object)
   std::string choice;                             ///< how the object was chosen, for people
   int outliers_removed = 0;                       ///< voxelised points removed as statistical outliers
+  /// The space the camera saw empty (camera frame, m): from the whole view, so the table and the background
+  /// count as well as the object; empty without intrinsics (free_space_of).
+  std::shared_ptr<const core::FreeSpace> free_space;
 };
+
+/// The view's free space: every measured point's depth at its pixel (the nearest where several share one:
+/// a scene cloud projected), 0 elsewhere, with the sensor noise's defaults (core::FreeSpace). Empty without
+/// intrinsics.
+std::shared_ptr<const core::FreeSpace> free_space_of(const SceneView& view);
 
 /// Cuts the object out of `view`. UsageError for a pixel pick outside the image or without intrinsics;
 /// InputError for too few points, no plane, no cluster, or a pick that hits no cluster.
