@@ -137,10 +137,10 @@ TEST(FreeSpaceScene, ThePoseSearchWithFreeSpaceKeepsTheHiddenHandleHidden) {
   const MugScene& scene = mug_scene();
   const SceneCut cut = cut_scene(scene.view);
   ASSERT_TRUE(cut.free_space);
-  core::RegistrationSettings settings;
-  settings.refinement.enabled = false;  // the pose is what free space decides
-  core::RegistrationSettings blind_settings = settings;
-  blind_settings.initialisation.free_space_weight = 0.0;
+  core::RegistrationSettings blind_settings;
+  blind_settings.refinement.enabled = false;  // the pose is what free space decides
+  core::RegistrationSettings settings = blind_settings;
+  settings.initialisation.free_space_weight = 10.0;  // off by default (registration_settings.hpp)
   const core::RegistrationResult blind = register_cut(scene.model, cut, blind_settings);
   const core::RegistrationResult seeing = register_cut(scene.model, cut, settings);
   ASSERT_TRUE(blind.figures.free_space_violation && seeing.figures.free_space_violation);

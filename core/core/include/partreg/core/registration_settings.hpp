@@ -125,8 +125,9 @@ struct InitialisationSettings {
   /// the camera could not see, 2 still kept a pose with 4% of its points in free space and the handle 0.11 m
   /// off; 10 hid it (0.5%). On 24 views of two held-out ShapeNet mugs, all registered correctly without it,
   /// 10 left 19 unchanged, moved 3 by at most 0.0004 of the diagonal and made 2 worse (0.017 to 0.030 and
-  /// 0.027): a correct pose's few per cent in free space can tip nearly equal finalists (docs/camera.md).
-  double free_space_weight = 10.0;
+  /// 0.027): a correct pose's few per cent in free space can tip nearly equal finalists (docs/camera.md). Off
+  /// by default: on real mugs it helped no view and hurt two, and a model of the wrong size is pushed off.
+  double free_space_weight = 0.0;
 };
 
 /// When a space's fit stops.
