@@ -150,11 +150,12 @@ TEST(FreeSpaceScene, ThePoseSearchWithFreeSpaceKeepsTheHiddenHandleHidden) {
             << blind_error << " m; with: " << *seeing.figures.free_space_violation << ", " << seeing_error
             << " m\n";
   // Measured: without free space the handle stood where the camera saw the body and the table (violation
-  // 0.106, handle 0.106 m off); with it, hidden behind the body (0.005, 0.043 m: behind the body it may
-  // turn unseen).
+  // 0.044 with the scene cut's 0.04 m clusters, 0.106 with 0.02 m; handle 0.106 m off); with it, hidden
+  // behind the body (0.003, 0.048 m: behind the body it may turn unseen).
   EXPECT_LT(*seeing.figures.free_space_violation, 0.02);
   EXPECT_LT(seeing_error, 0.06);
-  EXPECT_GT(*blind.figures.free_space_violation, 0.08);
+  EXPECT_GT(*blind.figures.free_space_violation, 5.0 * *seeing.figures.free_space_violation);
+  EXPECT_GT(*blind.figures.free_space_violation, 0.03);
   EXPECT_GT(blind_error, 0.08);
 }
 

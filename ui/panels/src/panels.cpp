@@ -295,7 +295,7 @@ void registration_panel(const AppState& state, PanelState& panel, std::vector<Co
   const core::TrustFigures& f = result.figures;
   ImGui::Text("verdict: %s", core::enum_name(result.assessment.verdict).c_str());
   for (const std::string& reason : result.assessment.reasons) ImGui::BulletText("%s", reason.c_str());
-  ImGui::Text("inliers %.1f%%, RMS %.2f%%, latent %.2f sd, pose ambiguity %.3g, scale %.3g", 100.0 * f.inlier_share,
+  ImGui::TextWrapped("inliers %.1f%%, RMS %.2f%%, latent %.2f sd, pose ambiguity %.3g, scale %.3g", 100.0 * f.inlier_share,
               100.0 * f.observed_rms, f.latent_distance, f.pose_ambiguity, f.scale);
   input_text("##result", panel.result_folder);
   ImGui::SameLine();
