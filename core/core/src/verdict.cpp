@@ -151,11 +151,16 @@ Assessment judge(const TrustFigures& f, const VerdictSettings& s) {
     flag(a, Verdict::failed, explained + percent(f.inlier_share) + " < " + percent(s.failed_inlier_share));
   else if (f.inlier_share < s.doubtful_inlier_share)
     flag(a, Verdict::doubtful, explained + percent(f.inlier_share) + " < " + percent(s.doubtful_inlier_share));
-  const std::string rms = "observed-to-model RMS " + percent(f.observed_rms) + " of the diagonal > ";
-  if (f.observed_rms > s.failed_observed_rms)
-    flag(a, Verdict::failed, rms + percent(s.failed_observed_rms));
-  else if (f.observed_rms > s.doubtful_observed_rms)
-    flag(a, Verdict::doubtful, rms + percent(s.doubtful_observed_rms));
+  // A figure past its failed threshold fails the result, past its doubtful one makes it doubtful; the reason
+  // names the figure and the threshold it passed.
+  const auto above = [&a](double value, double doubtful, double failed, const std::string& reason) {
+    if (value > failed)
+      flag(a, Verdict::failed, reason + percent(failed));
+    else if (value > doubtful)
+      flag(a, Verdict::doubtful, reason + percent(doubtful));
+  };
+  above(f.observed_rms, s.doubtful_observed_rms, s.failed_observed_rms,
+        "observed-to-model RMS " + percent(f.observed_rms) + " of the diagonal > ");
   if (f.latent_distance > s.doubtful_latent_distance)
     flag(a, Verdict::doubtful,
          "shape unlike the training instances: latent " + number(f.latent_distance) + " sd from the mean > " +
@@ -167,23 +172,15 @@ Assessment judge(const TrustFigures& f, const VerdictSettings& s) {
   if (f.pose_ambiguity < s.doubtful_pose_ambiguity)
     flag(a, Verdict::doubtful,
          "ambiguous pose: a pose elsewhere scored within " + number(f.pose_ambiguity) + "x of the winner's");
-  const std::string seam = "parts apart: largest seam gap " + percent(f.seam_gap_max) + " of the diagonal > ";
-  if (f.seam_gap_max > s.failed_seam_gap)
-    flag(a, Verdict::failed, seam + percent(s.failed_seam_gap));
-  else if (f.seam_gap_max > s.doubtful_seam_gap)
-    flag(a, Verdict::doubtful, seam + percent(s.doubtful_seam_gap));
+  above(f.seam_gap_max, s.doubtful_seam_gap, s.failed_seam_gap,
+        "parts apart: largest seam gap " + percent(f.seam_gap_max) + " of the diagonal > ");
   if (f.mesh_stretch > s.doubtful_mesh_stretch)
     flag(a, Verdict::doubtful,
          "mesh stretched: an edge " + number(f.mesh_stretch) + "x its canonical length > " +
              number(s.doubtful_mesh_stretch));
-  if (f.free_space_violation) {
-    const std::string seen = "model points where the camera saw free space: " +
-                             percent(*f.free_space_violation) + " > ";
-    if (*f.free_space_violation > s.failed_free_space_violation)
-      flag(a, Verdict::failed, seen + percent(s.failed_free_space_violation));
-    else if (*f.free_space_violation > s.doubtful_free_space_violation)
-      flag(a, Verdict::doubtful, seen + percent(s.doubtful_free_space_violation));
-  }
+  if (f.free_space_violation)
+    above(*f.free_space_violation, s.doubtful_free_space_violation, s.failed_free_space_violation,
+          "model points where the camera saw free space: " + percent(*f.free_space_violation) + " > ");
   if (f.scale_at_bound)
     flag(a, Verdict::doubtful,
          "fitted scale " + number(f.scale) + " at its bound (scale-limit): check the units or the model's size");
