@@ -13,10 +13,10 @@
 #include <sstream>
 
 #include "partreg/core/errors.hpp"
-#include "partreg/core/kdtree.hpp"
-#include "partreg/core/normalization.hpp"
+#include "partreg/core/geometry/kdtree.hpp"
+#include "partreg/core/geometry/normalization.hpp"
+#include "partreg/core/geometry/sampling.hpp"
 #include "partreg/core/parallel.hpp"
-#include "partreg/core/sampling.hpp"
 #include "partreg/eval/baselines.hpp"
 
 namespace partreg::eval {

@@ -12,7 +12,7 @@
 
 #include "grasp_report.hpp"
 #include "partreg/core/errors.hpp"
-#include "partreg/core/registration_settings.hpp"
+#include "partreg/core/registration/registration_settings.hpp"
 #include "partreg/eval/baselines.hpp"
 #include "partreg/eval/verdict_report.hpp"
 

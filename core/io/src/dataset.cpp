@@ -7,7 +7,7 @@
 #include <set>
 
 #include "partreg/core/errors.hpp"
-#include "partreg/core/sampling.hpp"
+#include "partreg/core/geometry/sampling.hpp"
 #include "partreg/io/geometry_io.hpp"
 #include "partreg/io/labels_file.hpp"
 #include "partreg/io/mesh_io.hpp"

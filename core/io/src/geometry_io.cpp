@@ -3,7 +3,7 @@
 #include <fstream>
 
 #include "partreg/core/errors.hpp"
-#include "partreg/core/sampling.hpp"
+#include "partreg/core/geometry/sampling.hpp"
 #include "partreg/io/atomic_file.hpp"
 #include "partreg/io/cloud_io.hpp"
 #include "partreg/io/mesh_io.hpp"

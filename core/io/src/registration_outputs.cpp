@@ -1,8 +1,8 @@
 #include "partreg/io/registration_outputs.hpp"
 
-#include "partreg/core/deformation.hpp"
 #include "partreg/core/errors.hpp"
-#include "partreg/core/kdtree.hpp"
+#include "partreg/core/geometry/kdtree.hpp"
+#include "partreg/core/registration/deformation.hpp"
 #include "partreg/io/mesh_io.hpp"
 
 namespace partreg::io {

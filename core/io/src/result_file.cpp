@@ -4,7 +4,7 @@
 #include <fstream>
 
 #include "partreg/core/errors.hpp"
-#include "partreg/core/registration_options.hpp"
+#include "partreg/core/registration/registration_options.hpp"
 #include "partreg/io/atomic_file.hpp"
 #include "partreg/io/cloud_io.hpp"
 #include "partreg/io/frames_file.hpp"

@@ -12,9 +12,9 @@
 #include <sstream>
 
 #include "partreg/core/errors.hpp"
-#include "partreg/core/part_selection.hpp"
-#include "partreg/core/registration_options.hpp"
-#include "partreg/core/training_options.hpp"
+#include "partreg/core/geometry/part_selection.hpp"
+#include "partreg/core/registration/registration_options.hpp"
+#include "partreg/core/training/training_options.hpp"
 #include "partreg/io/atomic_file.hpp"
 #include "partreg/io/cloud_io.hpp"
 #include "partreg/io/frames_file.hpp"
