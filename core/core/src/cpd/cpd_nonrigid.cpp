@@ -2,7 +2,7 @@
 #include <Eigen/Dense>
 #include <cmath>
 
-#include "cpd_expectation.hpp"
+#include "cpd_em.hpp"
 #include "options/option_builders.hpp"
 #include "partreg/core/cpd/cpd.hpp"
 #include "partreg/core/errors.hpp"

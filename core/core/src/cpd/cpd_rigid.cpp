@@ -1,7 +1,7 @@
 // Rigid and affine CPD (Myronenko & Song 2010, Figs. 2 and 3): closed-form M-steps on the E-step's sums.
 #include <Eigen/SVD>
 
-#include "cpd_expectation.hpp"
+#include "cpd_em.hpp"
 #include "partreg/core/cpd/cpd.hpp"
 #include "partreg/core/errors.hpp"
 #include "partreg/core/geometry/sampling.hpp"

@@ -7,7 +7,7 @@
 #include <chrono>
 #include <cmath>
 
-#include "cpd/cpd_expectation.hpp"
+#include "cpd/cpd_em.hpp"
 #include "partreg/core/errors.hpp"
 #include "partreg/core/geometry/gaussian_kernel.hpp"
 #include "partreg/core/geometry/kdtree.hpp"
