@@ -73,7 +73,9 @@ TEST(RegistrationOptions, BadValuesNameTheValueNotAFlag) {
       {"loss-scale", "nan"}, {"up", "0,0,0"},         {"viewpoint", "nan,0,0"}, {"trim", "1.5"},
       {"loss", "l1"},        {"iterations", "many"},  {"scale", "maybe"},       {"observed-points", "1e30"},
       {"seam-weight", "-1"}, {"seam-weight", "stiff"}};
-  for (const auto& [name, value] : bad) {
+  for (const auto& pair : bad) {
+    const std::string& name = pair.first;
+    const std::string& value = pair.second;
     const std::string message = usage_message([&] { set_registration_option(settings, name, value); });
     EXPECT_FALSE(message.empty()) << name << "=" << value << " was accepted";
     EXPECT_EQ(message.find("--"), std::string::npos) << message;

@@ -48,7 +48,9 @@ TEST(TrainingOptions, BadValuesAreRefusedNamingTheValue) {
       {"beta", "0"},          {"lambda", "nan"},        {"up", "0,0,0"},        {"part-points", "1.5"},
       {"seam-weights", ""},   {"seam-weights", "1,,3"}, {"seam-weights", "1,"}, {"seam-weights", "-1"},
       {"seam-weights", "1,x"}};
-  for (const auto& [name, value] : bad) {
+  for (const auto& pair : bad) {
+    const std::string& name = pair.first;
+    const std::string& value = pair.second;
     const std::string message = usage_message([&] { training_option(name).set(settings, value); });
     EXPECT_NE(message.find(name), std::string::npos) << name << "=" << value << ": '" << message << "'";
   }

@@ -50,7 +50,7 @@ TEST(RealDataRobustness, TwentyPercentOutliersLeaveAHeldOutKettleNearItsCleanFit
   const auto& [truth, model, diagonal] = held_out_kettle();
   const core::Points outliers =
       eval::perturb(truth, eval::Perturbation::outliers, 0.2, diagonal, /*seed=*/7).points;
-  const auto registered = [&](const core::Points& observed, double stray_limit) {
+  const auto registered = [&model = model](const core::Points& observed, double stray_limit) {
     core::RegistrationSettings settings;
     settings.sampling.stray_limit = stray_limit;
     return core::register_observation(model, observed, settings);

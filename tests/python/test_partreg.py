@@ -186,7 +186,6 @@ def test_cpd_equals_the_command_line(partreg, data_dir, cli_dir):
     target = partreg.read_cloud(data_dir / "drills" / "drill_2.pcd")
     rigid = partreg.cpd(source, target, mode="rigid")
     cli = json.loads((cli_dir / "cpd_rigid.json").read_text())
-    # CPD's fast E-step sums in float blocks whose split follows the threads: another process agrees to ~1e-8.
     assert np.allclose(rigid.T_target_source, cli["T_target_source"], rtol=0, atol=CPD_CLOSE)
     assert rigid.sigma2 == pytest.approx(cli["sigma2"], rel=CPD_CLOSE)
     assert rigid.iterations == cli["iterations"] and rigid.stop_reason == cli["stop_reason"]
@@ -501,6 +500,16 @@ def test_model_of_another_format_version_raises_input_error(partreg, cli_dir, tm
     other.write_bytes(data.replace(version, f'"format_version":{partreg.model_format_version + 1}'.encode()))
     with pytest.raises(partreg.InputError, match=f"has format version {partreg.model_format_version + 1}"):
         partreg.read_model(other)
+
+
+def test_one_thread_and_two_give_the_same_bits(partreg, model, observed_mug):
+    cloud = partreg.read_cloud(observed_mug)
+    one, two = (partreg.register(model, cloud, threads=threads) for threads in (1, 2))
+    assert np.array_equal(one.deformed, two.deformed)
+    assert len(one.fits) == len(two.fits) > 0
+    for first, second in zip(one.fits, two.fits):
+        assert np.array_equal(first.T_observed_canonical, second.T_observed_canonical)
+        assert np.array_equal(first.latent, second.latent)
 
 
 def test_unknown_setting_raises_usage_error(partreg, model, observed_mug):
