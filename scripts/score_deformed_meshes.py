@@ -6,8 +6,8 @@
 Used by scripts/bench_interaction_warping.sh so that partreg's result and a peer's are measured the same
 way: the truth is sampled as `partreg register --truth` samples it (20000 points, seed 2), every deformed
 mesh is sampled area-uniformly to the same count (4000 points, seed 1: equal point density whatever the
-method's own point count), and `partreg.measure_errors` (core/truth_errors.hpp) gives the figures, D being
-the truth's diagonal. A cloud is scored as it is (no resampling). Prints one JSON object per input line.
+method's own point count), and `partreg.measure_errors` (core/geometry/truth_errors.hpp) gives the figures, D
+being the truth's diagonal. A cloud is scored as it is (no resampling). Prints one JSON object per input line.
 Needs the partreg Python module on PYTHONPATH (build/python).
 """
 import json

@@ -8,11 +8,11 @@
 
 #include "arrays.hpp"
 #include "bindings.hpp"
-#include "partreg/core/deformation.hpp"
 #include "partreg/core/errors.hpp"
+#include "partreg/core/geometry/truth_errors.hpp"
 #include "partreg/core/parallel.hpp"
-#include "partreg/core/training.hpp"
-#include "partreg/core/truth_errors.hpp"
+#include "partreg/core/registration/deformation.hpp"
+#include "partreg/core/training/training.hpp"
 #include "partreg/eval/views.hpp"
 #include "partreg/io/cloud_io.hpp"
 #include "partreg/io/dataset.hpp"
@@ -357,8 +357,8 @@ void bind_evaluation(py::module_& m) {
       py::arg("deformed"), py::arg("part"), py::arg("part_names"), py::arg("truth"),
       py::arg("diagonal") = py::none(), py::arg("truth_part") = py::none(),
       "Every error figure of deformed points (M, 3; part (M,) indexing part_names) against a dense sample of "
-      "the true instance (N, 3), same frame and data units (core/truth_errors.hpp, the one home of them): "
-      "eq5 "
+      "the true instance (N, 3), same frame and data units (core/geometry/truth_errors.hpp, the one home of "
+      "them): eq5 "
       "and reverse_eq5 in data units squared, chamfer in data units, *_per_diagonal divided by D, "
       "*_per_diagonal2 by D^2; D is `diagonal` or, when omitted, the truth's bounding-box diagonal. With "
       "truth_part (N,) indexing part_names, also each part against the same part of the truth "

@@ -5,8 +5,8 @@
 
 #include "arrays.hpp"
 #include "bindings.hpp"
-#include "partreg/core/deformation.hpp"
-#include "partreg/core/grasp.hpp"
+#include "partreg/core/registration/deformation.hpp"
+#include "partreg/core/transfer/grasp.hpp"
 #include "partreg/eval/gripper.hpp"
 #include "partreg/io/grasps_file.hpp"
 

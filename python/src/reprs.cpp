@@ -5,12 +5,12 @@
 #include <sstream>
 
 #include "bindings.hpp"
-#include "partreg/core/category_model.hpp"
-#include "partreg/core/cpd.hpp"
-#include "partreg/core/deformation.hpp"
-#include "partreg/core/grasp.hpp"
-#include "partreg/core/registration.hpp"
-#include "partreg/core/verdict.hpp"
+#include "partreg/core/cpd/cpd.hpp"
+#include "partreg/core/registration/deformation.hpp"
+#include "partreg/core/registration/registration.hpp"
+#include "partreg/core/registration/verdict.hpp"
+#include "partreg/core/space/category_model.hpp"
+#include "partreg/core/transfer/grasp.hpp"
 #include "partreg/eval/views.hpp"
 
 namespace partreg::python {

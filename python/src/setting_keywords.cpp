@@ -1,6 +1,6 @@
-// Keywords come from the option tables (core/setting_option.hpp): a keyword is an option's name with '-' as
-// '_', its value travels as the text the command line would read, and its default is the table's. Nothing
-// about a setting is declared here.
+// Keywords come from the option tables (core/options/setting_option.hpp): a keyword is an option's name with
+// '-' as '_', its value travels as the text the command line would read, and its default is the table's.
+// Nothing about a setting is declared here.
 #include "setting_keywords.hpp"
 
 #include <algorithm>
@@ -10,9 +10,9 @@
 
 #include "arrays.hpp"
 #include "partreg/core/errors.hpp"
-#include "partreg/core/part_selection.hpp"
-#include "partreg/core/registration_options.hpp"
-#include "partreg/core/training_options.hpp"
+#include "partreg/core/geometry/part_selection.hpp"
+#include "partreg/core/registration/registration_options.hpp"
+#include "partreg/core/training/training_options.hpp"
 
 namespace partreg::python {
 namespace {

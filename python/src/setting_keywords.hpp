@@ -1,16 +1,16 @@
 #pragma once
 /// \file
 /// Keyword arguments from the option tables: register()'s are the registration options
-/// (core/registration_options.hpp), train()'s the training options (core/training_options.hpp), each named
-/// as on the command line with '-' as '_' (and a trailing '_' on a Python keyword: `lambda_`), with the
-/// same defaults.
+/// (core/registration/registration_options.hpp), train()'s the training options
+/// (core/training/training_options.hpp), each named as on the command line with '-' as '_' (and a trailing
+/// '_' on a Python keyword: `lambda_`), with the same defaults.
 
 #include <pybind11/pybind11.h>
 
 #include <string>
 
-#include "partreg/core/registration.hpp"
-#include "partreg/core/training.hpp"
+#include "partreg/core/registration/registration.hpp"
+#include "partreg/core/training/training.hpp"
 
 namespace partreg::python {
 

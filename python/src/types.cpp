@@ -4,11 +4,11 @@
 
 #include "arrays.hpp"
 #include "bindings.hpp"
-#include "partreg/core/category_model.hpp"
-#include "partreg/core/cpd.hpp"
-#include "partreg/core/deformation.hpp"
+#include "partreg/core/cpd/cpd.hpp"
 #include "partreg/core/errors.hpp"
-#include "partreg/core/registration.hpp"
+#include "partreg/core/registration/deformation.hpp"
+#include "partreg/core/registration/registration.hpp"
+#include "partreg/core/space/category_model.hpp"
 #include "partreg/eval/views.hpp"
 
 namespace partreg::python {

@@ -1,11 +1,11 @@
-// The verdict's Python face: what a registration says of itself without the truth (core/verdict.hpp), added
-// to the classes types.cpp made (Model, SpaceFit, RegistrationResult).
+// The verdict's Python face: what a registration says of itself without the truth
+// (core/registration/verdict.hpp), added to the classes types.cpp made (Model, SpaceFit, RegistrationResult).
 #include <pybind11/stl.h>
 
 #include <limits>
 
 #include "bindings.hpp"
-#include "partreg/core/registration.hpp"
+#include "partreg/core/registration/registration.hpp"
 
 namespace partreg::python {
 

@@ -14,9 +14,9 @@
 #include <memory>
 #include <random>
 
-#include "partreg/core/cpd.hpp"
-#include "partreg/core/kdtree.hpp"
-#include "partreg/core/sampling.hpp"
+#include "partreg/core/cpd/cpd.hpp"
+#include "partreg/core/geometry/kdtree.hpp"
+#include "partreg/core/geometry/sampling.hpp"
 #include "partreg/io/cloud_io.hpp"
 #include "support/shared_data.hpp"
 

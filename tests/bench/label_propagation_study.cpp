@@ -5,9 +5,9 @@
 // held-out kettle. Run: ./build/tests/bench/label_propagation_study
 #include <iostream>
 
-#include "partreg/core/kdtree.hpp"
-#include "partreg/core/registration.hpp"
-#include "partreg/core/training.hpp"
+#include "partreg/core/geometry/kdtree.hpp"
+#include "partreg/core/registration/registration.hpp"
+#include "partreg/core/training/training.hpp"
 #include "partreg/io/dataset.hpp"
 #include "support/shared_data.hpp"
 

@@ -9,10 +9,10 @@
 #include <cstdio>
 #include <map>
 
-#include "partreg/core/registration.hpp"
-#include "partreg/core/registration_options.hpp"
-#include "partreg/core/training.hpp"
-#include "partreg/core/truth_errors.hpp"
+#include "partreg/core/geometry/truth_errors.hpp"
+#include "partreg/core/registration/registration.hpp"
+#include "partreg/core/registration/registration_options.hpp"
+#include "partreg/core/training/training.hpp"
 #include "partreg/eval/views.hpp"
 #include "partreg/io/dataset.hpp"
 #include "support/shared_data.hpp"

@@ -8,8 +8,8 @@
 #include <map>
 
 #include "partreg/core/parallel.hpp"
-#include "partreg/core/registration.hpp"
-#include "partreg/core/training.hpp"
+#include "partreg/core/registration/registration.hpp"
+#include "partreg/core/training/training.hpp"
 #include "partreg/eval/views.hpp"
 #include "partreg/io/dataset.hpp"
 #include "support/shared_data.hpp"

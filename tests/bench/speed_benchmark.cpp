@@ -8,10 +8,10 @@
 
 #include <optional>
 
+#include "partreg/core/geometry/sampling.hpp"
 #include "partreg/core/parallel.hpp"
-#include "partreg/core/registration.hpp"
-#include "partreg/core/sampling.hpp"
-#include "partreg/core/training.hpp"
+#include "partreg/core/registration/registration.hpp"
+#include "partreg/core/training/training.hpp"
 #include "partreg/io/dataset.hpp"
 #include "partreg/io/mesh_io.hpp"
 #include "support/shared_data.hpp"

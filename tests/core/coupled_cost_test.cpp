@@ -1,11 +1,11 @@
-// The coupled variant's terms (core/core/src/coupled_solver.hpp): one part's data term (the moment cost at
-// the part's effective pose, chained to the object's pose and the part's offset) and the seam term of two
-// parts. Their values against the definitions, their Jacobians against central differences.
+// The coupled variant's terms (core/core/src/registration/coupled_solver.hpp): one part's data term (the
+// moment cost at the part's effective pose, chained to the object's pose and the part's offset) and the seam
+// term of two parts. Their values against the definitions, their Jacobians against central differences.
 #include <gtest/gtest.h>
 
 #include <random>
 
-#include "coupled_solver.hpp"
+#include "registration/coupled_solver.hpp"
 #include "support/jacobian_check.hpp"
 
 namespace partreg::core::detail {

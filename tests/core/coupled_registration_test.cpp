@@ -6,11 +6,11 @@
 #include <map>
 #include <optional>
 
-#include "partreg/core/deformation.hpp"
-#include "partreg/core/registration.hpp"
-#include "partreg/core/synthetic.hpp"
-#include "partreg/core/training.hpp"
-#include "partreg/core/truth_errors.hpp"
+#include "partreg/core/geometry/truth_errors.hpp"
+#include "partreg/core/registration/deformation.hpp"
+#include "partreg/core/registration/registration.hpp"
+#include "partreg/core/synthetic/synthetic.hpp"
+#include "partreg/core/training/training.hpp"
 #include "support/test_shapes.hpp"
 
 namespace partreg::core {

@@ -1,6 +1,6 @@
-// The E-step's outlier term (core/core/src/cpd_expectation.hpp): CPD's density per point (1 / N) against a
-// density per volume (1 / V), on one source point and two targets whose posteriors have a closed form.
-#include "cpd_expectation.hpp"
+// The E-step's outlier term (core/core/src/cpd/cpd_expectation.hpp): CPD's density per point (1 / N) against
+// a density per volume (1 / V), on one source point and two targets whose posteriors have a closed form.
+#include "cpd/cpd_expectation.hpp"
 
 #include <gtest/gtest.h>
 

@@ -5,9 +5,9 @@
 #include <memory>
 #include <vector>
 
-#include "partreg/core/cpd.hpp"
+#include "partreg/core/cpd/cpd.hpp"
 #include "partreg/core/parallel.hpp"
-#include "partreg/core/synthetic.hpp"
+#include "partreg/core/synthetic/synthetic.hpp"
 
 namespace partreg::core {
 namespace {

@@ -1,9 +1,9 @@
-#include "partreg/core/cpd.hpp"
+#include "partreg/core/cpd/cpd.hpp"
 
 #include <gtest/gtest.h>
 
 #include "partreg/core/errors.hpp"
-#include "partreg/core/normalization.hpp"
+#include "partreg/core/geometry/normalization.hpp"
 #include "support/test_shapes.hpp"
 
 namespace partreg::core {

@@ -1,6 +1,7 @@
-// Free space (core/free_space.hpp) on a synthetic depth image of a plane facing the camera: which points
-// violate and by how much, lost pixels on a surface and open sky, the frame map, and the verdict's reading.
-#include "partreg/core/free_space.hpp"
+// Free space (core/geometry/free_space.hpp) on a synthetic depth image of a plane facing the camera: which
+// points violate and by how much, lost pixels on a surface and open sky, the frame map, and the verdict's
+// reading.
+#include "partreg/core/geometry/free_space.hpp"
 
 #include <gtest/gtest.h>
 
@@ -8,7 +9,7 @@
 #include <limits>
 
 #include "partreg/core/errors.hpp"
-#include "partreg/core/verdict.hpp"
+#include "partreg/core/registration/verdict.hpp"
 #include "support/test_shapes.hpp"
 
 namespace partreg::core {

@@ -1,6 +1,6 @@
 // The Gaussian kernel: the dense matrix against its formula, the blocked matrix-free product
 // apply_kernel against the dense product, and the field's Jacobian against finite differences.
-#include "partreg/core/gaussian_kernel.hpp"
+#include "partreg/core/geometry/gaussian_kernel.hpp"
 
 #include <gtest/gtest.h>
 

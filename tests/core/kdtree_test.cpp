@@ -1,6 +1,6 @@
 // The KD-tree against brute force: every answer (with and without a starting hint) must equal what scanning all points gives, on random
 // clouds and on the degenerate sets registration meets (duplicates, a line, a plane, one point).
-#include "partreg/core/kdtree.hpp"
+#include "partreg/core/geometry/kdtree.hpp"
 
 #include <gtest/gtest.h>
 

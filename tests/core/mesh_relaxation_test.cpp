@@ -1,6 +1,6 @@
-// Folds and spikes out of a deformed mesh (core/core/src/mesh_relaxation.hpp): a flat grid folded over in a
-// patch, and one vertex pulled far out of it, are repaired there and left as they were elsewhere.
-#include "mesh_relaxation.hpp"
+// Folds and spikes out of a deformed mesh (core/core/src/geometry/mesh_relaxation.hpp): a flat grid folded
+// over in a patch, and one vertex pulled far out of it, are repaired there and left as they were elsewhere.
+#include "geometry/mesh_relaxation.hpp"
 
 #include <gtest/gtest.h>
 

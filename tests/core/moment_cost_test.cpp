@@ -1,6 +1,7 @@
-// The registration step's cost in moments (core/core/src/moment_cost.hpp) against the sum it replaces:
-// sum_i w_i |s R (a_i + K_i x) + t - o_i|^2 plus the prior, and its Jacobian against central differences.
-#include "moment_cost.hpp"
+// The registration step's cost in moments (core/core/src/registration/moment_cost.hpp) against the sum it
+// replaces: sum_i w_i |s R (a_i + K_i x) + t - o_i|^2 plus the prior, and its Jacobian against central
+// differences.
+#include "registration/moment_cost.hpp"
 
 #include <gtest/gtest.h>
 

@@ -1,6 +1,6 @@
 // Normalisation round trips: apply then undo gives the input back, and the reference lands in a box of
 // diagonal 1 centred at the origin.
-#include "partreg/core/normalization.hpp"
+#include "partreg/core/geometry/normalization.hpp"
 
 #include <gtest/gtest.h>
 

@@ -1,6 +1,6 @@
 // The geometric part selectors: what they select, and errors that name the value (the command line adds
 // its flag, so the same message reads right in `partreg label` and in the app's scripts).
-#include "partreg/core/part_selection.hpp"
+#include "partreg/core/geometry/part_selection.hpp"
 
 #include <gtest/gtest.h>
 

@@ -1,6 +1,6 @@
-// Which parts' surfaces pass through a point (core/core/src/part_surfaces.hpp): the truth label propagation
-// is judged against where two part files lie on one another.
-#include "part_surfaces.hpp"
+// Which parts' surfaces pass through a point (core/core/src/training/part_surfaces.hpp): the truth label
+// propagation is judged against where two part files lie on one another.
+#include "training/part_surfaces.hpp"
 
 #include <gtest/gtest.h>
 

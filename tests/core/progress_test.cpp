@@ -7,10 +7,10 @@
 #include <thread>
 #include <vector>
 
-#include "partreg/core/cpd.hpp"
-#include "partreg/core/registration.hpp"
-#include "partreg/core/synthetic.hpp"
-#include "partreg/core/training.hpp"
+#include "partreg/core/cpd/cpd.hpp"
+#include "partreg/core/registration/registration.hpp"
+#include "partreg/core/synthetic/synthetic.hpp"
+#include "partreg/core/training/training.hpp"
 
 namespace partreg::core {
 namespace {

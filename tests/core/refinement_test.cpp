@@ -1,17 +1,17 @@
-#include "partreg/core/refinement.hpp"
+#include "partreg/core/registration/refinement.hpp"
 
 #include <gtest/gtest.h>
 
 #include <random>
 
-#include "partreg/core/cpd.hpp"
-#include "partreg/core/deformation.hpp"
+#include "partreg/core/cpd/cpd.hpp"
 #include "partreg/core/errors.hpp"
-#include "partreg/core/registration.hpp"
-#include "partreg/core/registration_options.hpp"
-#include "partreg/core/synthetic.hpp"
-#include "partreg/core/training.hpp"
-#include "partreg/core/truth_errors.hpp"
+#include "partreg/core/geometry/truth_errors.hpp"
+#include "partreg/core/registration/deformation.hpp"
+#include "partreg/core/registration/registration.hpp"
+#include "partreg/core/registration/registration_options.hpp"
+#include "partreg/core/synthetic/synthetic.hpp"
+#include "partreg/core/training/training.hpp"
 #include "support/test_shapes.hpp"
 
 namespace partreg::core {

@@ -1,4 +1,4 @@
-#include "partreg/core/registration_options.hpp"
+#include "partreg/core/registration/registration_options.hpp"
 
 #include <gtest/gtest.h>
 

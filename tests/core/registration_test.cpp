@@ -1,18 +1,18 @@
-#include "partreg/core/registration.hpp"
+#include "partreg/core/registration/registration.hpp"
 
 #include <gtest/gtest.h>
 
 #include <map>
 #include <random>
 
-#include "mixture_fit.hpp"
-#include "partreg/core/deformation.hpp"
+#include "registration/mixture_fit.hpp"
 #include "partreg/core/errors.hpp"
-#include "partreg/core/kdtree.hpp"
-#include "partreg/core/synthetic.hpp"
-#include "partreg/core/training.hpp"
-#include "partreg/core/truth_errors.hpp"
-#include "pose_search.hpp"
+#include "partreg/core/geometry/kdtree.hpp"
+#include "partreg/core/geometry/truth_errors.hpp"
+#include "partreg/core/registration/deformation.hpp"
+#include "partreg/core/synthetic/synthetic.hpp"
+#include "partreg/core/training/training.hpp"
+#include "registration/pose_search.hpp"
 #include "support/test_shapes.hpp"
 
 namespace partreg::core {

@@ -1,6 +1,6 @@
 // Farthest-point sampling checked against its definition: starts at the given row, every next pick is a
 // point farthest from the rows picked so far, no row twice, and exactly the count asked for.
-#include "partreg/core/sampling.hpp"
+#include "partreg/core/geometry/sampling.hpp"
 
 #include <gtest/gtest.h>
 

@@ -1,4 +1,4 @@
-#include "partreg/core/shape_space.hpp"
+#include "partreg/core/space/shape_space.hpp"
 
 #include <gtest/gtest.h>
 
@@ -6,7 +6,7 @@
 #include <random>
 
 #include "partreg/core/errors.hpp"
-#include "partreg/core/gaussian_kernel.hpp"
+#include "partreg/core/geometry/gaussian_kernel.hpp"
 
 namespace partreg::core {
 namespace {

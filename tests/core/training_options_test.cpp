@@ -1,6 +1,6 @@
-// The training options (core/training_options.hpp): one table that `partreg train`, `partreg eval` and
-// Python's train() read, whose ranges train_category checks too.
-#include "partreg/core/training_options.hpp"
+// The training options (core/training/training_options.hpp): one table that `partreg train`, `partreg eval`
+// and Python's train() read, whose ranges train_category checks too.
+#include "partreg/core/training/training_options.hpp"
 
 #include <gtest/gtest.h>
 

@@ -1,4 +1,4 @@
-#include "partreg/core/training.hpp"
+#include "partreg/core/training/training.hpp"
 
 #include <gtest/gtest.h>
 
@@ -7,12 +7,12 @@
 #include <map>
 #include <sstream>
 
-#include "partreg/core/deformation.hpp"
 #include "partreg/core/errors.hpp"
-#include "partreg/core/gaussian_kernel.hpp"
-#include "partreg/core/kdtree.hpp"
-#include "partreg/core/registration.hpp"
-#include "partreg/core/synthetic.hpp"
+#include "partreg/core/geometry/gaussian_kernel.hpp"
+#include "partreg/core/geometry/kdtree.hpp"
+#include "partreg/core/registration/deformation.hpp"
+#include "partreg/core/registration/registration.hpp"
+#include "partreg/core/synthetic/synthetic.hpp"
 
 namespace partreg::core {
 namespace {

@@ -1,4 +1,4 @@
-#include "partreg/core/truth_errors.hpp"
+#include "partreg/core/geometry/truth_errors.hpp"
 
 #include <gtest/gtest.h>
 

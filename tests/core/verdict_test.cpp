@@ -1,14 +1,14 @@
-// The verdict on a registration without the truth (core/verdict.hpp): good on a correct registration of a
-// held-out synthetic mug, not good when the answer is wrong (a pose forced off, another category's object, a
-// table plane left in); and the units a model with a real size takes observations in.
+// The verdict on a registration without the truth (core/registration/verdict.hpp): good on a correct
+// registration of a held-out synthetic mug, not good when the answer is wrong (a pose forced off, another
+// category's object, a table plane left in); and the units a model with a real size takes observations in.
 #include <gtest/gtest.h>
 
 #include "partreg/core/errors.hpp"
-#include "partreg/core/kdtree.hpp"
-#include "partreg/core/registration.hpp"
-#include "partreg/core/synthetic.hpp"
-#include "partreg/core/training.hpp"
-#include "partreg/core/verdict.hpp"
+#include "partreg/core/geometry/kdtree.hpp"
+#include "partreg/core/registration/registration.hpp"
+#include "partreg/core/registration/verdict.hpp"
+#include "partreg/core/synthetic/synthetic.hpp"
+#include "partreg/core/training/training.hpp"
 #include "support/test_shapes.hpp"
 
 namespace partreg::core {

@@ -1,13 +1,14 @@
-// Which canonical points a viewpoint sees (core/core/src/visibility.hpp): occlusion by a depth buffer, with the
-// facing test for grazing points. Shapes whose answer is known: a closed sphere and an open bowl.
-#include "visibility.hpp"
+// Which canonical points a viewpoint sees (core/core/src/geometry/visibility.hpp): occlusion by a depth
+// buffer, with the facing test for grazing points. Shapes whose answer is known: a closed sphere and an open
+// bowl.
+#include "geometry/visibility.hpp"
 
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <iostream>
 
-#include "space_solver.hpp"
+#include "registration/space_solver.hpp"
 #include "support/test_shapes.hpp"
 
 namespace partreg::core::detail {

@@ -5,10 +5,10 @@
 
 #include <map>
 
-#include "partreg/core/deformation.hpp"
-#include "partreg/core/registration.hpp"
-#include "partreg/core/training.hpp"
-#include "partreg/core/truth_errors.hpp"
+#include "partreg/core/geometry/truth_errors.hpp"
+#include "partreg/core/registration/deformation.hpp"
+#include "partreg/core/registration/registration.hpp"
+#include "partreg/core/training/training.hpp"
 #include "partreg/io/dataset.hpp"
 #include "support/shared_data.hpp"
 #include "support/test_shapes.hpp"

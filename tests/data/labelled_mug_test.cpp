@@ -2,7 +2,7 @@
 // stay whole across the seam between handle and body, and its handle has enough canonical points.
 #include <gtest/gtest.h>
 
-#include "partreg/core/space_walk.hpp"
+#include "partreg/core/registration/space_walk.hpp"
 #include "support/labelled_mugs.hpp"
 
 namespace partreg {

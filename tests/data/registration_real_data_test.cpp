@@ -2,9 +2,9 @@
 // rotation and a translation of 3% of the diagonal. The result must beat rigid alignment of the mean shape.
 #include <gtest/gtest.h>
 
-#include "partreg/core/registration.hpp"
-#include "partreg/core/training.hpp"
-#include "partreg/core/truth_errors.hpp"
+#include "partreg/core/geometry/truth_errors.hpp"
+#include "partreg/core/registration/registration.hpp"
+#include "partreg/core/training/training.hpp"
 #include "partreg/io/dataset.hpp"
 #include "support/shared_data.hpp"
 #include "support/test_shapes.hpp"

@@ -3,11 +3,11 @@
 
 #include <gtest/gtest.h>
 
-#include "partreg/core/cpd.hpp"
-#include "partreg/core/deformation.hpp"
-#include "partreg/core/kdtree.hpp"
-#include "partreg/core/normalization.hpp"
-#include "partreg/core/training.hpp"
+#include "partreg/core/cpd/cpd.hpp"
+#include "partreg/core/geometry/kdtree.hpp"
+#include "partreg/core/geometry/normalization.hpp"
+#include "partreg/core/registration/deformation.hpp"
+#include "partreg/core/training/training.hpp"
 #include "partreg/io/cloud_io.hpp"
 #include "partreg/io/dataset.hpp"
 #include "partreg/io/geometry_io.hpp"
@@ -156,8 +156,9 @@ TEST(SharedData, KettleLabelsPropagateToEveryOtherKettle) {
   EXPECT_GE(with_shared_surface, 2);  // measured 10-16% of kettles 3, 4 and 5 (0.6% of kettle 1)
   EXPECT_EQ(model.spaces.size(), 5u);
 
-  // The part spaces agree at their seams on the shapes they were trained on (core/core/src/seam_agreement.hpp);
-  // the part CPDs' own fields (seam_band 0, the paper's training) put the parts of the same kettle apart.
+  // The part spaces agree at their seams on the shapes they were trained on
+  // (core/core/src/space/seam_agreement.hpp); the part CPDs' own fields (seam_band 0, the paper's training)
+  // put the parts of the same kettle apart.
   core::TrainingSettings unrefitted;
   unrefitted.seam_band = 0.0;
   const double agreeing = core::training_seam_gap(model).mean;

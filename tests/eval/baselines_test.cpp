@@ -6,9 +6,9 @@
 #include <limits>
 
 #include "partreg/core/errors.hpp"
-#include "partreg/core/sampling.hpp"
-#include "partreg/core/synthetic.hpp"
-#include "partreg/core/training.hpp"
+#include "partreg/core/geometry/sampling.hpp"
+#include "partreg/core/synthetic/synthetic.hpp"
+#include "partreg/core/training/training.hpp"
 
 namespace partreg {
 namespace {

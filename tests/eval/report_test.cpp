@@ -7,7 +7,7 @@
 #include <fstream>
 
 #include "partreg/core/errors.hpp"
-#include "partreg/core/truth_errors.hpp"
+#include "partreg/core/geometry/truth_errors.hpp"
 #include "support/temp_dir.hpp"
 
 namespace partreg {

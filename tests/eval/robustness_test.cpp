@@ -9,9 +9,9 @@
 
 #include <iostream>
 
-#include "partreg/core/registration.hpp"
-#include "partreg/core/training.hpp"
-#include "partreg/core/truth_errors.hpp"
+#include "partreg/core/geometry/truth_errors.hpp"
+#include "partreg/core/registration/registration.hpp"
+#include "partreg/core/training/training.hpp"
 #include "partreg/eval/perturbation.hpp"
 #include "partreg/io/dataset.hpp"
 #include "support/shared_data.hpp"

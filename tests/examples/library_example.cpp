@@ -2,8 +2,8 @@
 // Built and run by ctest (label `cli`): partreg_library_example MODEL OBSERVED OUT_MESH.obj
 #include <iostream>
 
-#include "partreg/core/deformation.hpp"
-#include "partreg/core/registration.hpp"
+#include "partreg/core/registration/deformation.hpp"
+#include "partreg/core/registration/registration.hpp"
 #include "partreg/io/geometry_io.hpp"
 #include "partreg/io/mesh_io.hpp"
 #include "partreg/io/model_file.hpp"

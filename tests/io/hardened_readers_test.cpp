@@ -10,8 +10,8 @@
 #include <functional>
 
 #include "partreg/core/errors.hpp"
-#include "partreg/core/synthetic.hpp"
-#include "partreg/core/training.hpp"
+#include "partreg/core/synthetic/synthetic.hpp"
+#include "partreg/core/training/training.hpp"
 #include "partreg/io/cloud_io.hpp"
 #include "partreg/io/frames_file.hpp"
 #include "partreg/io/geometry_io.hpp"

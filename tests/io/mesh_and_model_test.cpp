@@ -3,8 +3,8 @@
 #include <fstream>
 
 #include "partreg/core/errors.hpp"
-#include "partreg/core/synthetic.hpp"
-#include "partreg/core/training.hpp"
+#include "partreg/core/synthetic/synthetic.hpp"
+#include "partreg/core/training/training.hpp"
 #include "partreg/io/dataset.hpp"
 #include "partreg/io/geometry_io.hpp"
 #include "partreg/io/mesh_io.hpp"

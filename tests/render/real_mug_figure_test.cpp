@@ -4,7 +4,7 @@
 #include <gtest/gtest.h>
 
 #include "image_baseline.hpp"
-#include "partreg/core/registration.hpp"
+#include "partreg/core/registration/registration.hpp"
 #include "partreg/io/geometry_io.hpp"
 #include "partreg/render/figure.hpp"
 #include "support/labelled_mugs.hpp"

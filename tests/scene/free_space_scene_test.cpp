@@ -6,10 +6,10 @@
 
 #include <iostream>
 
-#include "partreg/core/kdtree.hpp"
-#include "partreg/core/sampling.hpp"
-#include "partreg/core/synthetic.hpp"
-#include "partreg/core/training.hpp"
+#include "partreg/core/geometry/kdtree.hpp"
+#include "partreg/core/geometry/sampling.hpp"
+#include "partreg/core/synthetic/synthetic.hpp"
+#include "partreg/core/training/training.hpp"
 #include "partreg/io/mesh_io.hpp"
 #include "partreg/scene/depth_render.hpp"
 #include "partreg/scene/scene_input.hpp"

@@ -2,7 +2,7 @@
 // the object chosen, and its points are the mug's size.
 #include <gtest/gtest.h>
 
-#include "partreg/core/normalization.hpp"
+#include "partreg/core/geometry/normalization.hpp"
 #include "partreg/scene/scene_input.hpp"
 #include "partreg/scene/segmentation.hpp"
 #include "support/shared_data.hpp"

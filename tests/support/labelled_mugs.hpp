@@ -6,7 +6,7 @@
 #include <algorithm>
 #include <string>
 
-#include "partreg/core/training.hpp"
+#include "partreg/core/training/training.hpp"
 #include "partreg/io/dataset.hpp"
 #include "partreg/io/labels_file.hpp"
 #include "support/shared_data.hpp"

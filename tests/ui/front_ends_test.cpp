@@ -6,7 +6,7 @@
 #include <fstream>
 #include <nlohmann/json.hpp>
 
-#include "partreg/core/registration_options.hpp"
+#include "partreg/core/registration/registration_options.hpp"
 #include "partreg/ui/executor.hpp"
 #include "partreg/ui/script.hpp"
 #include "support/run_partreg.hpp"

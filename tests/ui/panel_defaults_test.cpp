@@ -4,7 +4,7 @@
 
 #include <map>
 
-#include "partreg/core/registration_options.hpp"
+#include "partreg/core/registration/registration_options.hpp"
 #include "partreg/ui/executor.hpp"
 #include "partreg/ui/panels.hpp"
 

@@ -7,8 +7,8 @@
 #include <set>
 
 #include "partreg/core/errors.hpp"
-#include "partreg/core/registration_options.hpp"
-#include "partreg/core/training_options.hpp"
+#include "partreg/core/registration/registration_options.hpp"
+#include "partreg/core/training/training_options.hpp"
 #include "partreg/ui/executor.hpp"
 
 namespace partreg::ui {

@@ -1,9 +1,9 @@
 #include <gtest/gtest.h>
 
-#include "partreg/core/deformation.hpp"
 #include "partreg/core/errors.hpp"
-#include "partreg/core/gaussian_kernel.hpp"
-#include "partreg/core/kdtree.hpp"
+#include "partreg/core/geometry/gaussian_kernel.hpp"
+#include "partreg/core/geometry/kdtree.hpp"
+#include "partreg/core/registration/deformation.hpp"
 #include "partreg/io/model_file.hpp"
 #include "partreg/ui/executor.hpp"
 #include "partreg/ui/script.hpp"

@@ -2,8 +2,8 @@
 #include <gtest/gtest.h>
 
 #include "partreg/core/errors.hpp"
-#include "partreg/core/kdtree.hpp"
-#include "partreg/core/normalization.hpp"
+#include "partreg/core/geometry/kdtree.hpp"
+#include "partreg/core/geometry/normalization.hpp"
 #include "partreg/io/labels_file.hpp"
 #include "partreg/ui/executor.hpp"
 #include "partreg/ui/script.hpp"

@@ -7,8 +7,8 @@
 #include <string>
 #include <vector>
 
-#include "partreg/core/synthetic.hpp"
-#include "partreg/core/training.hpp"
+#include "partreg/core/synthetic/synthetic.hpp"
+#include "partreg/core/training/training.hpp"
 #include "partreg/io/cloud_io.hpp"
 #include "partreg/io/mesh_io.hpp"
 #include "partreg/io/model_file.hpp"

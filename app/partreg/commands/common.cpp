@@ -9,8 +9,8 @@
 #include <sstream>
 
 #include "partreg/core/errors.hpp"
-#include "partreg/core/part_selection.hpp"
-#include "partreg/core/sampling.hpp"
+#include "partreg/core/geometry/part_selection.hpp"
+#include "partreg/core/geometry/sampling.hpp"
 #include "partreg/io/atomic_file.hpp"
 #include "partreg/io/geometry_io.hpp"
 #include "partreg/io/labels_file.hpp"

@@ -13,7 +13,7 @@
 #include <utility>
 #include <vector>
 
-#include "partreg/core/category_model.hpp"
+#include "partreg/core/space/category_model.hpp"
 #include "partreg/core/types.hpp"
 #include "partreg/io/atomic_file.hpp"
 #include "partreg/io/dataset.hpp"
@@ -42,7 +42,8 @@ using io::matrix_json;
 /// Each space of a model: name, points, dimensions, beta, variances and explained fraction per dimension.
 nlohmann::json spaces_json(const core::CategoryModel& model);
 
-/// Option values (core/setting_option.hpp's option_values) as a JSON object by name, leaving out `skip`.
+/// Option values (core/options/setting_option.hpp's option_values) as a JSON object by name, leaving out
+/// `skip`.
 nlohmann::json settings_json(const std::vector<std::pair<std::string, std::string>>& values,
                              const std::set<std::string>& skip = {});
 

@@ -9,7 +9,7 @@
 #include "partreg/commands/common.hpp"
 #include "partreg/commands/console.hpp"
 #include "partreg/commands/setting_flags.hpp"
-#include "partreg/core/cpd.hpp"
+#include "partreg/core/cpd/cpd.hpp"
 #include "partreg/core/errors.hpp"
 #include "partreg/core/parallel.hpp"
 #include "partreg/io/atomic_file.hpp"

@@ -7,12 +7,12 @@
 
 #include "partreg/commands/common.hpp"
 #include "partreg/commands/console.hpp"
-#include "partreg/commands/setting_flags.hpp"
 #include "partreg/commands/render_common.hpp"
+#include "partreg/commands/setting_flags.hpp"
 #include "partreg/core/errors.hpp"
 #include "partreg/core/parallel.hpp"
 #include "partreg/core/progress.hpp"
-#include "partreg/core/registration.hpp"
+#include "partreg/core/registration/registration.hpp"
 #include "partreg/io/model_file.hpp"
 #include "partreg/render/figure.hpp"
 

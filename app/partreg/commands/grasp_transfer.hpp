@@ -7,7 +7,7 @@
 #include <string>
 #include <vector>
 
-#include "partreg/core/grasp.hpp"
+#include "partreg/core/transfer/grasp.hpp"
 
 namespace partreg::app {
 

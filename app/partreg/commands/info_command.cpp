@@ -4,8 +4,8 @@
 
 #include "partreg/commands/commands.hpp"
 #include "partreg/commands/common.hpp"
-#include "partreg/core/deformation.hpp"
-#include "partreg/core/space_walk.hpp"
+#include "partreg/core/registration/deformation.hpp"
+#include "partreg/core/registration/space_walk.hpp"
 #include "partreg/io/model_file.hpp"
 
 namespace partreg::app {

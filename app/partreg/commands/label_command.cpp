@@ -10,7 +10,7 @@
 #include "partreg/commands/commands.hpp"
 #include "partreg/commands/console.hpp"
 #include "partreg/core/errors.hpp"
-#include "partreg/core/part_selection.hpp"
+#include "partreg/core/geometry/part_selection.hpp"
 #include "partreg/io/labels_file.hpp"
 #include "partreg/io/mesh_io.hpp"
 #include "partreg/io/output_format.hpp"

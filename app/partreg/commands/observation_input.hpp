@@ -10,7 +10,7 @@
 #include <optional>
 #include <string>
 
-#include "partreg/core/registration.hpp"
+#include "partreg/core/registration/registration.hpp"
 #include "partreg/scene/scene_options.hpp"
 #include "partreg/scene/segmentation.hpp"
 

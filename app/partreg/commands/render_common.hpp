@@ -8,7 +8,7 @@
 #include <string>
 #include <utility>
 
-#include "partreg/core/part_selection.hpp"
+#include "partreg/core/geometry/part_selection.hpp"
 
 namespace partreg::app {
 

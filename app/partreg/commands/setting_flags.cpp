@@ -1,8 +1,8 @@
 #include "partreg/commands/setting_flags.hpp"
 
 #include "partreg/core/errors.hpp"
-#include "partreg/core/registration_options.hpp"
-#include "partreg/core/training_options.hpp"
+#include "partreg/core/registration/registration_options.hpp"
+#include "partreg/core/training/training_options.hpp"
 #include "partreg/scene/scene_options.hpp"
 
 namespace partreg::app {

@@ -1,16 +1,16 @@
 #pragma once
 /// \file
-/// The command line's face of the option tables (core/registration_options.hpp, core/training_options.hpp)
-/// and of the thread budget: every command that registers or trains adds its flags here, so `register`,
-/// `eval` and `figure compare` take the same registration flags, and `train` and `eval` the same training
-/// flags, with the same defaults.
+/// The command line's face of the option tables (core/registration/registration_options.hpp,
+/// core/training/training_options.hpp) and of the thread budget: every command that registers or trains adds
+/// its flags here, so `register`, `eval` and `figure compare` take the same registration flags, and `train`
+/// and `eval` the same training flags, with the same defaults.
 
 #include <CLI/CLI.hpp>
 #include <set>
 #include <string>
 
-#include "partreg/core/registration_settings.hpp"
-#include "partreg/core/training.hpp"
+#include "partreg/core/registration/registration_settings.hpp"
+#include "partreg/core/training/training.hpp"
 #include "partreg/scene/scene_options.hpp"
 
 namespace partreg::app {

@@ -11,7 +11,7 @@
 #include "partreg/commands/console.hpp"
 #include "partreg/core/errors.hpp"
 #include "partreg/core/progress.hpp"
-#include "partreg/core/synthetic.hpp"
+#include "partreg/core/synthetic/synthetic.hpp"
 #include "partreg/io/cloud_io.hpp"
 #include "partreg/io/mesh_io.hpp"
 

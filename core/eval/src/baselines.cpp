@@ -7,8 +7,8 @@
 #include <limits>
 
 #include "partreg/core/errors.hpp"
-#include "partreg/core/gaussian_kernel.hpp"
-#include "partreg/core/sampling.hpp"
+#include "partreg/core/geometry/gaussian_kernel.hpp"
+#include "partreg/core/geometry/sampling.hpp"
 
 namespace partreg::eval {
 namespace {

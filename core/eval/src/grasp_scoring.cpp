@@ -3,8 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
-#include "partreg/core/deformation.hpp"
-#include "partreg/core/sampling.hpp"
+#include "partreg/core/geometry/sampling.hpp"
+#include "partreg/core/registration/deformation.hpp"
 
 namespace partreg::eval::detail {
 namespace {

@@ -5,10 +5,10 @@
 #include <optional>
 #include <vector>
 
-#include "partreg/core/category_model.hpp"
-#include "partreg/core/grasp.hpp"
-#include "partreg/core/kdtree.hpp"
-#include "partreg/core/registration.hpp"
+#include "partreg/core/geometry/kdtree.hpp"
+#include "partreg/core/registration/registration.hpp"
+#include "partreg/core/space/category_model.hpp"
+#include "partreg/core/transfer/grasp.hpp"
 #include "partreg/eval/gripper.hpp"
 #include "partreg/eval/protocol.hpp"
 

@@ -10,7 +10,7 @@
 #include <sstream>
 
 #include "partreg/core/errors.hpp"
-#include "partreg/core/registration_settings.hpp"
+#include "partreg/core/registration/registration_settings.hpp"
 #include "partreg/eval/report.hpp"
 
 namespace partreg::eval {

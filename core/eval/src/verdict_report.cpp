@@ -53,7 +53,7 @@ void verdict_tables(std::ostream& out, const std::vector<EvalRow>& rows) {
   if (tallies.empty()) return;
   out << "\n### The verdict against the truth\n\nA registration is bad when its symmetric RMS is above " << kBadRatio
       << "x the oracle template's on the same observation; flagged: a verdict of doubtful or failed "
-         "(core/verdict.hpp).\n\n| category | bad | bad flagged | good | good flagged | failed |\n|---|---|---|---|---|---|\n";
+         "(core/registration/verdict.hpp).\n\n| category | bad | bad flagged | good | good flagged | failed |\n|---|---|---|---|---|---|\n";
   for (const auto& [category, t] : tallies) {
     if (category.empty()) continue;
     out << "| " << category << " | " << t.bad << " | " << t.bad_flagged << " (" << share(t.bad_flagged, t.bad)

@@ -13,8 +13,8 @@
 #include <unordered_set>
 
 #include "partreg/core/errors.hpp"
-#include "partreg/core/kdtree.hpp"
-#include "partreg/core/normalization.hpp"
+#include "partreg/core/geometry/kdtree.hpp"
+#include "partreg/core/geometry/normalization.hpp"
 #include "partreg/core/parallel.hpp"
 
 namespace partreg::eval {

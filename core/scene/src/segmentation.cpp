@@ -8,7 +8,7 @@
 #include <sstream>
 
 #include "partreg/core/errors.hpp"
-#include "partreg/core/kdtree.hpp"
+#include "partreg/core/geometry/kdtree.hpp"
 #include "pcl_steps.hpp"
 
 namespace partreg::scene {

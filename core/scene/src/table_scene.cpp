@@ -4,7 +4,7 @@
 #include <random>
 
 #include "partreg/core/errors.hpp"
-#include "partreg/core/normalization.hpp"
+#include "partreg/core/geometry/normalization.hpp"
 
 namespace partreg::scene {
 namespace {

@@ -5,10 +5,10 @@
 #include <limits>
 #include <random>
 
-#include "partreg/core/deformation.hpp"
 #include "partreg/core/errors.hpp"
-#include "partreg/core/kdtree.hpp"
-#include "partreg/core/normalization.hpp"
+#include "partreg/core/geometry/kdtree.hpp"
+#include "partreg/core/geometry/normalization.hpp"
+#include "partreg/core/registration/deformation.hpp"
 #include "partreg/eval/perturbation.hpp"
 #include "partreg/scene/scene_input.hpp"
 #include "partreg/scene/scene_registration.hpp"

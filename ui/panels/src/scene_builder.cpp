@@ -4,8 +4,8 @@
 #include <limits>
 #include <optional>
 
-#include "partreg/core/deformation.hpp"
-#include "partreg/core/kdtree.hpp"
+#include "partreg/core/geometry/kdtree.hpp"
+#include "partreg/core/registration/deformation.hpp"
 #include "partreg/render/palette.hpp"
 
 namespace partreg::ui {

@@ -4,8 +4,8 @@
 #include <cmath>
 #include <cstdio>
 
-#include "partreg/core/deformation.hpp"
 #include "partreg/core/errors.hpp"
+#include "partreg/core/registration/deformation.hpp"
 #include "partreg/render/text.hpp"
 
 namespace partreg::render {

@@ -1,7 +1,7 @@
 #include "partreg/ui/live_deformation.hpp"
 
 #include "partreg/core/errors.hpp"
-#include "partreg/core/gaussian_kernel.hpp"
+#include "partreg/core/geometry/gaussian_kernel.hpp"
 
 namespace partreg::ui {
 

@@ -5,8 +5,8 @@
 #include <sstream>
 
 #include "partreg/core/errors.hpp"
-#include "partreg/core/normalization.hpp"
-#include "partreg/core/training.hpp"
+#include "partreg/core/geometry/normalization.hpp"
+#include "partreg/core/training/training.hpp"
 #include "partreg/eval/perturbation.hpp"
 #include "partreg/eval/views.hpp"
 #include "partreg/io/dataset.hpp"

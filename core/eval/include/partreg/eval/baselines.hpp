@@ -25,11 +25,11 @@
 #include <utility>
 #include <vector>
 
-#include "partreg/core/category_model.hpp"
-#include "partreg/core/enum_names.hpp"
-#include "partreg/core/kdtree.hpp"
-#include "partreg/core/training.hpp"
-#include "partreg/core/truth_errors.hpp"
+#include "partreg/core/geometry/kdtree.hpp"
+#include "partreg/core/geometry/truth_errors.hpp"
+#include "partreg/core/options/enum_names.hpp"
+#include "partreg/core/space/category_model.hpp"
+#include "partreg/core/training/training.hpp"
 
 namespace partreg::eval {
 

@@ -1,10 +1,10 @@
 #pragma once
 /// \file
-/// The gripper test: would a parallel-jaw gripper hold an object with a grasp (core/grasp.hpp)? The fingers
-/// start open at max_aperture / 2 on either side of the grasp's origin along its closing axis and close
-/// towards it; each finger pad is sampled by 5 rays (its centre and the middles of its four sides, across y
-/// and z). A finger stops at its pad's first touch. The grasp holds when both fingers touch the object
-/// before passing the origin, each first-touch surface normal lies inside the friction cone about the
+/// The gripper test: would a parallel-jaw gripper hold an object with a grasp (core/transfer/grasp.hpp)? The
+/// fingers start open at max_aperture / 2 on either side of the grasp's origin along its closing axis and
+/// close towards it; each finger pad is sampled by 5 rays (its centre and the middles of its four sides,
+/// across y and z). A finger stops at its pad's first touch. The grasp holds when both fingers touch the
+/// object before passing the origin, each first-touch surface normal lies inside the friction cone about the
 /// closing axis (angle <= atan(mu)), and neither finger meets the object on its way in along the approach
 /// (finger_depth behind the open pad). The same simulation samples antipodal grasps on a mesh and re-seats
 /// carried grasps on what a registration believes the object is. Lengths in the object's data units.
@@ -17,7 +17,7 @@
 #include <string>
 #include <vector>
 
-#include "partreg/core/grasp.hpp"
+#include "partreg/core/transfer/grasp.hpp"
 #include "partreg/core/types.hpp"
 
 namespace partreg::eval {

@@ -11,7 +11,7 @@
 #include <string>
 #include <vector>
 
-#include "partreg/core/enum_names.hpp"
+#include "partreg/core/options/enum_names.hpp"
 #include "partreg/core/types.hpp"
 
 namespace partreg::eval {

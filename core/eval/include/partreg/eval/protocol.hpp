@@ -13,11 +13,11 @@
 #include <string>
 #include <vector>
 
-#include "partreg/core/deformation.hpp"
-#include "partreg/core/grasp.hpp"
-#include "partreg/core/registration.hpp"
-#include "partreg/core/training.hpp"
-#include "partreg/core/truth_errors.hpp"
+#include "partreg/core/geometry/truth_errors.hpp"
+#include "partreg/core/registration/deformation.hpp"
+#include "partreg/core/registration/registration.hpp"
+#include "partreg/core/training/training.hpp"
+#include "partreg/core/transfer/grasp.hpp"
 #include "partreg/eval/perturbation.hpp"
 #include "partreg/eval/views.hpp"
 

@@ -1,8 +1,9 @@
 #pragma once
 /// \file
-/// The verdict (core/verdict.hpp) set against the truth on the evaluation's rows: a registration is bad when
-/// its symmetric RMS error is above `kBadRatio` times the oracle template's on the same observation (the
-/// best rigidly aligned training instance, baselines.hpp); a flag is a verdict of doubtful or failed.
+/// The verdict (core/registration/verdict.hpp) set against the truth on the evaluation's rows: a registration
+/// is bad when its symmetric RMS error is above `kBadRatio` times the oracle template's on the same
+/// observation (the best rigidly aligned training instance, baselines.hpp); a flag is a verdict of doubtful
+/// or failed.
 
 #include <map>
 #include <ostream>

@@ -11,7 +11,7 @@
 #include <string>
 #include <vector>
 
-#include "partreg/core/training.hpp"
+#include "partreg/core/training/training.hpp"
 
 namespace partreg::io {
 

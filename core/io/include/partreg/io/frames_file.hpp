@@ -8,7 +8,7 @@
 #include <filesystem>
 #include <vector>
 
-#include "partreg/core/deformation.hpp"
+#include "partreg/core/registration/deformation.hpp"
 
 namespace partreg::io {
 

@@ -1,6 +1,6 @@
 #pragma once
 /// \file
-/// Parallel-jaw grasps and their gripper (core/grasp.hpp), as JSON:
+/// Parallel-jaw grasps and their gripper (core/transfer/grasp.hpp), as JSON:
 /// {"format": "partreg-grasps", "version": 1,
 ///  "gripper": {"max_aperture": 0.08, "pad_size": 0.02, "finger_depth": 0.04, "friction": 0.5},
 ///  "grasps": [{"name": "grasp_0", "part": "handle", "position": [x, y, z],
@@ -16,7 +16,7 @@
 #include <optional>
 #include <vector>
 
-#include "partreg/core/grasp.hpp"
+#include "partreg/core/transfer/grasp.hpp"
 
 namespace partreg::io {
 

@@ -13,7 +13,7 @@
 #include <filesystem>
 #include <nlohmann/json.hpp>
 
-#include "partreg/core/category_model.hpp"
+#include "partreg/core/space/category_model.hpp"
 
 namespace partreg::io {
 

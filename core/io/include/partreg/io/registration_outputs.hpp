@@ -8,8 +8,8 @@
 #include <string>
 #include <vector>
 
-#include "partreg/core/category_model.hpp"
-#include "partreg/core/registration.hpp"
+#include "partreg/core/registration/registration.hpp"
+#include "partreg/core/space/category_model.hpp"
 #include "partreg/io/cloud_io.hpp"
 
 namespace partreg::io {

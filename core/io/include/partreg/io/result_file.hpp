@@ -8,10 +8,10 @@
 #include <string>
 #include <vector>
 
-#include "partreg/core/category_model.hpp"
-#include "partreg/core/deformation.hpp"
-#include "partreg/core/registration.hpp"
-#include "partreg/core/truth_errors.hpp"
+#include "partreg/core/geometry/truth_errors.hpp"
+#include "partreg/core/registration/deformation.hpp"
+#include "partreg/core/registration/registration.hpp"
+#include "partreg/core/space/category_model.hpp"
 
 namespace partreg::io {
 

@@ -8,7 +8,7 @@
 #include <nlohmann/json.hpp>
 #include <string>
 
-#include "partreg/core/registration.hpp"
+#include "partreg/core/registration/registration.hpp"
 
 namespace partreg::io {
 

@@ -1,11 +1,11 @@
 #pragma once
 /// \file
-/// The settings of a scene's cut and of its registration as named options (core/setting_option.hpp): the
-/// `segment` and `register` commands take them as --NAME, the Python module as keywords (- as _).
+/// The settings of a scene's cut and of its registration as named options (core/options/setting_option.hpp):
+/// the `segment` and `register` commands take them as --NAME, the Python module as keywords (- as _).
 
 #include <vector>
 
-#include "partreg/core/setting_option.hpp"
+#include "partreg/core/options/setting_option.hpp"
 #include "partreg/scene/scene_registration.hpp"
 #include "partreg/scene/segmentation.hpp"
 

@@ -7,7 +7,7 @@
 
 #include <Eigen/Geometry>
 
-#include "partreg/core/registration.hpp"
+#include "partreg/core/registration/registration.hpp"
 #include "partreg/scene/segmentation.hpp"
 
 namespace partreg::scene {

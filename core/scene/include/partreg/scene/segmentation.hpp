@@ -12,7 +12,7 @@
 #include <string>
 #include <vector>
 
-#include "partreg/core/free_space.hpp"
+#include "partreg/core/geometry/free_space.hpp"
 #include "partreg/scene/camera.hpp"
 
 namespace partreg::scene {

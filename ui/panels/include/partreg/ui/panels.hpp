@@ -7,7 +7,7 @@
 #include <utility>
 #include <vector>
 
-#include "partreg/core/registration_settings.hpp"
+#include "partreg/core/registration/registration_settings.hpp"
 #include "partreg/ui/app_state.hpp"
 #include "partreg/ui/commands.hpp"
 

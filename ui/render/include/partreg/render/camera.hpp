@@ -9,7 +9,7 @@
 #include <limits>
 #include <string>
 
-#include "partreg/core/enum_names.hpp"
+#include "partreg/core/options/enum_names.hpp"
 #include "partreg/core/types.hpp"
 
 namespace partreg::render {

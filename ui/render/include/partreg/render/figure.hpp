@@ -6,9 +6,9 @@
 #include <string>
 #include <vector>
 
-#include "partreg/core/category_model.hpp"
 #include "partreg/core/progress.hpp"
-#include "partreg/core/registration.hpp"
+#include "partreg/core/registration/registration.hpp"
+#include "partreg/core/space/category_model.hpp"
 #include "partreg/render/headless.hpp"
 #include "partreg/render/scene.hpp"
 

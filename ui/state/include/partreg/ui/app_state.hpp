@@ -10,10 +10,10 @@
 #include <string>
 #include <vector>
 
-#include "partreg/core/category_model.hpp"
-#include "partreg/core/deformation.hpp"
-#include "partreg/core/enum_names.hpp"
-#include "partreg/core/registration.hpp"
+#include "partreg/core/options/enum_names.hpp"
+#include "partreg/core/registration/deformation.hpp"
+#include "partreg/core/registration/registration.hpp"
+#include "partreg/core/space/category_model.hpp"
 #include "partreg/io/labels_file.hpp"
 #include "partreg/ui/live_deformation.hpp"
 #include "partreg/ui/view.hpp"

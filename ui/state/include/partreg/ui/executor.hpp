@@ -8,7 +8,7 @@
 #include <string>
 #include <vector>
 
-#include "partreg/core/registration.hpp"
+#include "partreg/core/registration/registration.hpp"
 #include "partreg/ui/app_state.hpp"
 #include "partreg/ui/commands.hpp"
 #include "partreg/ui/tools.hpp"

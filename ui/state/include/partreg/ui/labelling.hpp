@@ -7,7 +7,7 @@
 #include <string>
 #include <vector>
 
-#include "partreg/core/part_selection.hpp"
+#include "partreg/core/geometry/part_selection.hpp"
 #include "partreg/ui/app_state.hpp"
 
 namespace partreg::ui {

@@ -9,8 +9,8 @@
 #include <optional>
 #include <vector>
 
-#include "partreg/core/category_model.hpp"
-#include "partreg/core/space_walk.hpp"
+#include "partreg/core/registration/space_walk.hpp"
+#include "partreg/core/space/category_model.hpp"
 
 namespace partreg::ui {
 

@@ -7,7 +7,7 @@
 #include <cstdint>
 #include <string>
 
-#include "partreg/core/training.hpp"
+#include "partreg/core/training/training.hpp"
 #include "partreg/io/labels_file.hpp"
 #include "partreg/ui/app_state.hpp"
 
@@ -30,7 +30,8 @@ struct TrainingJob {
   std::string model_path;         ///< where the model is written (atomically)
   std::string labelled_instance;  ///< stem of the mesh being labelled; empty when none is loaded
   io::PartLabels labels;          ///< its labels, one per face
-  core::TrainingSettings settings;  ///< the training options (core/training_options.hpp); the canonical is set here
+  /// The training options (core/training/training_options.hpp); the canonical is set here.
+  core::TrainingSettings settings;
 
   /// Reads the dataset and trains; when the labelled mesh is one of the dataset's instances it becomes the
   /// canonical with these labels (every face must have a part, else UsageError). Writes the model and

@@ -1,0 +1,2 @@
+#pragma once
+// The higher room's internal header.
