@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Every table of docs/results.md and docs/benchmarks.md, regenerated: runs the evaluations (`partreg eval`,
+# Every table of docs/results.md, docs/results-synthetic.md and docs/benchmarks.md, regenerated: runs the evaluations (`partreg eval`,
 # `partreg report`) and benchmarks behind each generated block and rewrites the block in place, stamped with
 # the commit of the build's sources, the date, the machine and the commands (scripts/results_tables.py).
 #
@@ -9,7 +9,7 @@
 # --quick       only the quick blocks (seconds to a minute: what CI runs, into a copy of the docs)
 # --only        only these blocks (ids as in the pages' <!-- BEGIN GENERATED id --> markers)
 # --build       the build to run (default ./build); its sources' commit goes into the stamps
-# --docs        the folder holding results.md and benchmarks.md to rewrite (default ./docs)
+# --docs        the folder holding those pages, to rewrite (default ./docs)
 # --work        where the runs are written (default a new temporary folder, removed at the end)
 # --data        the shared object data (default: the build's PARTREG_DATA_DIR); blocks needing it are
 #               skipped with a message when it is absent
@@ -33,7 +33,8 @@ while [ $# -gt 0 ]; do
   shift
 done
 [ -x "$build/partreg" ] || usage "no partreg in $build (build first: scripts/build.sh)"
-for page in results.md benchmarks.md; do [ -f "$docs/$page" ] || usage "no $docs/$page"; done
+pages=(results.md results-synthetic.md benchmarks.md)  # every page holding generated blocks
+for page in "${pages[@]}"; do [ -f "$docs/$page" ] || usage "no $docs/$page"; done
 if [ -z "$data" ]; then
   data=$(sed -n 's/^PARTREG_DATA_DIR:PATH=//p' "$build/CMakeCache.txt" 2>/dev/null || true)
   data=${data:-$root/../shared/data}
@@ -140,7 +141,7 @@ if wanted synthetic full; then
   evaluate synthetic "$headline;Correspondence error;Seam gap;Time per registration" \
     "synthetic_mugs $work/synthetic_mugs $clean" "synthetic_spray_bottles $work/synthetic_spray_bottles $clean" \
     "synthetic_drills $work/synthetic_drills $clean"
-  finish results.md synthetic
+  finish results-synthetic.md synthetic
 fi
 if wanted noise-outliers full && have_data kettles noise-outliers && have_data mugs noise-outliers; then
   begin
@@ -196,4 +197,4 @@ fi
 if wanted render full; then benchmark render render_benchmark "${repeat[@]}"; fi
 if wanted gui full; then benchmark gui gui_benchmark --benchmark_filter=-Window "${repeat[@]}"; fi
 
-$tables check "$docs/results.md" "$docs/benchmarks.md"
+$tables check "${pages[@]/#/$docs/}"

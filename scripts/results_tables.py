@@ -1,5 +1,6 @@
 #!/usr/bin/env python3
-"""The generated tables of docs/results.md and docs/benchmarks.md (scripts/reproduce_results.sh drives it).
+"""The generated tables of docs/results.md, docs/results-synthetic.md and docs/benchmarks.md
+(scripts/reproduce_results.sh drives it).
 
 A generated block sits between two markers and starts with its stamp:
 

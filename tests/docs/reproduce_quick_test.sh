@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# scripts/reproduce_results.sh --quick into a copy of the two pages: it must rewrite the quick blocks with a stamp
+# scripts/reproduce_results.sh --quick into a copy of the pages: it must rewrite the quick blocks with a stamp
 # of today and this source tree's commit, leave the tracked pages alone, and its checker must refuse a table
 # without a stamp. Usage: reproduce_quick_test.sh SOURCE_DIR BUILD_DIR
 set -euo pipefail
@@ -7,12 +7,13 @@ source_dir=$1 build_dir=$2
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
 mkdir "$work/docs"
-cp "$source_dir/docs/results.md" "$source_dir/docs/benchmarks.md" "$work/docs/"
-before=$(cat "$source_dir/docs/results.md" "$source_dir/docs/benchmarks.md" | md5sum)
+pages=("$source_dir"/docs/{results,results-synthetic,benchmarks}.md)
+cp "${pages[@]}" "$work/docs/"
+before=$(cat "${pages[@]}" | md5sum)
 
 bash "$source_dir/scripts/reproduce_results.sh" --quick --build "$build_dir" --docs "$work/docs" --threads 2
 
-after=$(cat "$source_dir/docs/results.md" "$source_dir/docs/benchmarks.md" | md5sum)
+after=$(cat "${pages[@]}" | md5sum)
 [ "$before" = "$after" ] || { echo "the tracked pages changed" >&2; exit 1; }
 commit=$(git -C "$source_dir" rev-parse --short HEAD)
 today=$(date -u +%Y-%m-%d)
